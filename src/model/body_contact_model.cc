@@ -1,0 +1,147 @@
+#include "model/body_contact_model.h"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace cb {
+namespace {
+
+[[noreturn]] void ThrowPair(std::size_t pair, const std::string& reason) {
+  throw std::invalid_argument("BodyContactModel: pair " + std::to_string(pair) + " " + reason);
+}
+
+void CheckSize(const Vec& v, Eigen::Index size, const char* what, const char* name) {
+  if (v.size() != size) {
+    throw std::invalid_argument(std::string("BodyContactModel::") + what + ": " + name +
+                                " has size " + std::to_string(v.size()) + ", expected " +
+                                std::to_string(size));
+  }
+}
+
+}  // namespace
+
+BodyContactModel::BodyContactModel(std::shared_ptr<const ElasticBody> body,
+                                   std::vector<std::shared_ptr<const Obstacle>> obstacles,
+                                   std::vector<ContactPair> pairs, Vec load_pattern)
+    : body_(std::move(body)),
+      obstacles_(std::move(obstacles)),
+      pairs_(std::move(pairs)),
+      load_(std::move(load_pattern)) {
+  if (body_ == nullptr) throw std::invalid_argument("BodyContactModel: the body is null");
+  const int dim = body_->dim();
+  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+    if (obstacles_[k] == nullptr) {
+      throw std::invalid_argument("BodyContactModel: obstacle " + std::to_string(k) + " is null");
+    }
+    if (obstacles_[k]->dim() != dim) {
+      throw std::invalid_argument("BodyContactModel: obstacle " + std::to_string(k) + " (" +
+                                  obstacles_[k]->Describe() + ") has dimension " +
+                                  std::to_string(obstacles_[k]->dim()) + " but the body has " +
+                                  std::to_string(dim));
+    }
+  }
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const ContactPair& pair = pairs_[p];
+    if (pair.node < 0 || pair.node >= body_->num_nodes()) {
+      ThrowPair(p, "names unknown node " + std::to_string(pair.node) + " (the body has " +
+                       std::to_string(body_->num_nodes()) + " nodes)");
+    }
+    if (pair.obstacle < 0 || pair.obstacle >= static_cast<int>(obstacles_.size())) {
+      ThrowPair(p, "names unknown obstacle " + std::to_string(pair.obstacle) + " (there are " +
+                       std::to_string(obstacles_.size()) + ")");
+    }
+  }
+  const int d = body_->num_dofs();
+  if (load_.size() != d) {
+    throw std::invalid_argument("BodyContactModel: the load pattern has size " +
+                                std::to_string(load_.size()) +
+                                ", expected d = " + std::to_string(d));
+  }
+
+  // Both patterns are fixed here, in the order GapJacobian / GapCurvature add to them: they
+  // depend on the pairs and the supports only, never on u or r.
+  const DofMap& map = body_->dofs();
+  std::vector<ScatterPattern::Entry> jacobian_entries;
+  std::vector<ScatterPattern::Entry> curvature_entries;
+  jacobian_entries.reserve(pairs_.size() * dim);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const ContactPair& pair = pairs_[p];
+    for (int c = 0; c < dim; ++c) {
+      const int dof = map.dof(pair.node, c);
+      if (dof >= 0) jacobian_entries.emplace_back(static_cast<int>(p), dof);
+    }
+    if (!obstacles_[pair.obstacle]->is_curved()) continue;
+    for (int b = 0; b < dim; ++b) {
+      const int col = map.dof(pair.node, b);
+      if (col < 0) continue;
+      for (int a = 0; a < dim; ++a) {
+        const int row = map.dof(pair.node, a);
+        if (row >= 0) curvature_entries.emplace_back(row, col);
+      }
+    }
+  }
+  jacobian_pattern_ = ScatterPattern(num_pairs(), d, jacobian_entries);
+  curvature_pattern_ = ScatterPattern(d, d, curvature_entries);
+}
+
+bool BodyContactModel::is_linear() const {
+  if (!body_->is_linear()) return false;
+  for (const ContactPair& pair : pairs_) {
+    if (obstacles_[pair.obstacle]->is_curved()) return false;
+  }
+  return true;
+}
+
+void BodyContactModel::Gaps(const Vec& u, Vec* phi) const {
+  CheckSize(u, num_dofs(), "Gaps", "u");
+  phi->resize(num_pairs());
+  for (int p = 0; p < num_pairs(); ++p) {
+    const ContactPair& pair = pairs_[p];
+    (*phi)[p] = obstacles_[pair.obstacle]->Value(body_->Position(pair.node, u));
+  }
+}
+
+// Row p of grad phi: d varphi(X + u_node) / d u = grad varphi on the node's free components
+// (the position depends on u with unit slope there and not at all on supported components).
+void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
+  CheckSize(u, num_dofs(), "GapJacobian", "u");
+  jacobian_pattern_.Reset(jacobian);
+  double* values = jacobian->valuePtr();
+  const DofMap& map = body_->dofs();
+  const int dim = body_->dim();
+  std::size_t next = 0;
+  for (const ContactPair& pair : pairs_) {
+    const Point grad = obstacles_[pair.obstacle]->Gradient(body_->Position(pair.node, u));
+    for (int c = 0; c < dim; ++c) {
+      if (map.dof(pair.node, c) >= 0) values[jacobian_pattern_.slot(next++)] += grad[c];
+    }
+  }
+}
+
+// sum_p r_p hess phi_p(u): the node's free-dof block of r_p hess varphi for curved obstacles,
+// the curvature term of dF1/ddu in (29).
+void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const {
+  CheckSize(u, num_dofs(), "GapCurvature", "u");
+  CheckSize(r, num_pairs(), "GapCurvature", "r");
+  curvature_pattern_.Reset(curvature);
+  double* values = curvature->valuePtr();
+  const DofMap& map = body_->dofs();
+  const int dim = body_->dim();
+  std::size_t next = 0;
+  for (int p = 0; p < num_pairs(); ++p) {
+    const ContactPair& pair = pairs_[p];
+    const Obstacle& obstacle = *obstacles_[pair.obstacle];
+    if (!obstacle.is_curved()) continue;
+    const PointMat hess = obstacle.Hessian(body_->Position(pair.node, u));
+    for (int b = 0; b < dim; ++b) {
+      if (map.dof(pair.node, b) < 0) continue;
+      for (int a = 0; a < dim; ++a) {
+        if (map.dof(pair.node, a) < 0) continue;
+        values[curvature_pattern_.slot(next++)] += r[p] * hess(a, b);
+      }
+    }
+  }
+}
+
+}  // namespace cb

@@ -1,0 +1,53 @@
+// The contact model of an elastic body against rigid obstacles: gaps come from the obstacles'
+// signed distances evaluated at the contact nodes' current positions.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/sparse.h"
+#include "model/contact_model.h"
+#include "model/elastic_body.h"
+#include "model/obstacle.h"
+
+namespace cb {
+
+// A contact candidate: one node of the body against one obstacle.
+struct ContactPair {
+  int node = 0;
+  int obstacle = 0;
+};
+
+class BodyContactModel final : public ContactModel {
+ public:
+  // Throws std::invalid_argument on a pair naming an unknown node or obstacle, an obstacle of
+  // another dimension, or a load of the wrong size.
+  BodyContactModel(std::shared_ptr<const ElasticBody> body,
+                   std::vector<std::shared_ptr<const Obstacle>> obstacles,
+                   std::vector<ContactPair> pairs, Vec load_pattern);
+
+  int num_dofs() const override { return body_->num_dofs(); }
+  int num_pairs() const override { return static_cast<int>(pairs_.size()); }
+  bool is_linear() const override;
+  double Energy(const Vec& u) const override { return body_->Energy(u); }
+  void InternalForce(const Vec& u, Vec* force) const override { body_->InternalForce(u, force); }
+  void Stiffness(const Vec& u, SpMat* stiffness) const override { body_->Stiffness(u, stiffness); }
+  void Gaps(const Vec& u, Vec* phi) const override;
+  void GapJacobian(const Vec& u, SpMat* jacobian) const override;
+  void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
+  const Vec& load_pattern() const override { return load_; }
+
+  const ElasticBody& body() const { return *body_; }
+  const std::vector<std::shared_ptr<const Obstacle>>& obstacles() const { return obstacles_; }
+  const std::vector<ContactPair>& pairs() const { return pairs_; }
+
+ private:
+  std::shared_ptr<const ElasticBody> body_;
+  std::vector<std::shared_ptr<const Obstacle>> obstacles_;
+  std::vector<ContactPair> pairs_;
+  Vec load_;
+  ScatterPattern jacobian_pattern_;   // row p on the free dofs of pair p's node
+  ScatterPattern curvature_pattern_;  // node blocks of pairs on curved obstacles
+};
+
+}  // namespace cb

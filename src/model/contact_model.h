@@ -1,0 +1,45 @@
+// The abstract contact model of METHOD.md section 1: everything a formulation may ask of a
+// discretised body and its contact candidates. Evaluation only, no state about steps or solvers.
+#pragma once
+
+#include "core/types.h"
+
+namespace cb {
+
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+
+  // d, the number of displacement unknowns.
+  virtual int num_dofs() const = 0;
+  // nc, the number of contact candidates (pairs).
+  virtual int num_pairs() const = 0;
+
+  // True when grad pi is the gradient of an energy (Energy() is then defined and Stiffness()
+  // symmetric). A generic complementarity model may have a non-symmetric "internal force".
+  virtual bool has_energy() const { return true; }
+  // True for small deformation: quadratic energy and affine gaps (stiffness and gap Jacobian
+  // do not depend on u, and GapCurvature is zero).
+  virtual bool is_linear() const { return false; }
+
+  // pi(u), the strain energy.
+  virtual double Energy(const Vec& u) const = 0;
+  // grad pi(u), the internal force (size d).
+  virtual void InternalForce(const Vec& u, Vec* force) const = 0;
+  // hess pi(u), the tangent stiffness (d x d). Its sparsity pattern does not depend on u.
+  virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
+
+  // phi(u): phi_p = varphi_p(x_p(u)), positive when the node is inside obstacle p (size nc).
+  // The gap is g = -phi.
+  virtual void Gaps(const Vec& u, Vec* phi) const = 0;
+  // grad phi(u) (nc x d): row p is the obstacle's normal on pair p's node dofs.
+  virtual void GapJacobian(const Vec& u, SpMat* jacobian) const = 0;
+  // sum_p r_p hess phi_p(u) (d x d), the curvature term of curved obstacles. Its pattern
+  // depends on neither u nor r (pairs on flat obstacles contribute nothing).
+  virtual void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const = 0;
+
+  // f: the external load is lambda f (size d).
+  virtual const Vec& load_pattern() const = 0;
+};
+
+}  // namespace cb

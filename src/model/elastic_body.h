@@ -1,0 +1,52 @@
+// An elastic body discretised by nodes: the energy part of a contact model. Nodes have
+// reference coordinates X and `dim` displacement components each; a component is either a
+// free dof (an index into u) or fixed at zero (a support).
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace cb {
+
+// Node/component -> dof index, -1 for a fixed (supported) component.
+class DofMap {
+ public:
+  DofMap() = default;
+  // All components free, numbered node by node.
+  DofMap(int num_nodes, int dim);
+  // `fixed[n * dim + c]` true for supported components; free ones are numbered in order.
+  DofMap(int num_nodes, int dim, const std::vector<bool>& fixed);
+
+  int dim() const { return dim_; }
+  int num_nodes() const { return num_nodes_; }
+  int num_dofs() const { return num_dofs_; }
+  int dof(int node, int component) const { return map_[node * dim_ + component]; }
+
+ private:
+  int dim_ = 0;
+  int num_nodes_ = 0;
+  int num_dofs_ = 0;
+  std::vector<int> map_;
+};
+
+class ElasticBody {
+ public:
+  virtual ~ElasticBody() = default;
+  virtual int dim() const = 0;
+  virtual int num_nodes() const = 0;
+  virtual const DofMap& dofs() const = 0;
+  // Reference position of a node (size dim()).
+  virtual Point reference(int node) const = 0;
+  virtual bool is_linear() const = 0;
+  virtual double Energy(const Vec& u) const = 0;
+  virtual void InternalForce(const Vec& u, Vec* force) const = 0;
+  // Pattern fixed at construction.
+  virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
+
+  int num_dofs() const { return dofs().num_dofs(); }
+  // Current position X + u of a node; fixed components stay at X.
+  Point Position(int node, const Vec& u) const;
+};
+
+}  // namespace cb

@@ -1,0 +1,63 @@
+// Rigid obstacles as signed distances varphi(x), positive INSIDE the obstacle, with
+// |grad varphi| = 1 on the surface (METHOD.md section 1). Curved obstacles have a Hessian,
+// which is the curvature term sum_p r_p hess phi_p of (29).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/types.h"
+
+namespace cb {
+
+class Obstacle {
+ public:
+  virtual ~Obstacle() = default;
+  virtual int dim() const = 0;
+  virtual std::string Describe() const = 0;
+  virtual double Value(const Point& x) const = 0;
+  virtual Point Gradient(const Point& x) const = 0;
+  virtual PointMat Hessian(const Point& x) const = 0;
+  // False when the Hessian is identically zero (flat obstacles): no curvature entries needed.
+  virtual bool is_curved() const = 0;
+};
+
+// The half-space {x : n.(x - p) > 0} (half-plane in 2-D); `normal` points into the obstacle
+// and is normalised here. varphi(x) = n.(x - p).
+class HalfSpace final : public Obstacle {
+ public:
+  HalfSpace(Point point, Point normal);
+  int dim() const override { return static_cast<int>(point_.size()); }
+  std::string Describe() const override;
+  double Value(const Point& x) const override;
+  Point Gradient(const Point& x) const override;
+  PointMat Hessian(const Point& x) const override;
+  bool is_curved() const override { return false; }
+
+ private:
+  Point point_;
+  Point normal_;
+};
+
+// A circle (2-D) or sphere (3-D) of centre c and radius a. kSolid: the obstacle is the ball,
+// varphi = a - |x - c|. kCavity: the obstacle is everything outside the ball (a body inside a
+// round hole), varphi = |x - c| - a.
+class Ball final : public Obstacle {
+ public:
+  enum class Side { kSolid, kCavity };
+  Ball(Point centre, double radius, Side side);
+  int dim() const override { return static_cast<int>(centre_.size()); }
+  std::string Describe() const override;
+  double Value(const Point& x) const override;
+  Point Gradient(const Point& x) const override;
+  PointMat Hessian(const Point& x) const override;
+  bool is_curved() const override { return true; }
+
+ private:
+  double sign() const { return side_ == Side::kSolid ? -1.0 : 1.0; }
+  Point centre_;
+  double radius_;
+  Side side_;
+};
+
+}  // namespace cb

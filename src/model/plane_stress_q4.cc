@@ -1,0 +1,268 @@
+#include "model/plane_stress_q4.h"
+
+#include <Eigen/LU>  // 2 x 2 determinant and inverse
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace cb {
+namespace {
+
+using Mat8 = Eigen::Matrix<double, 8, 8>;
+using Mat38 = Eigen::Matrix<double, 3, 8>;
+
+// Natural coordinates of the four nodes, counter-clockwise from (-1, -1).
+constexpr double kXiNode[4] = {-1.0, 1.0, 1.0, -1.0};
+constexpr double kEtaNode[4] = {-1.0, -1.0, 1.0, 1.0};
+
+[[noreturn]] void ThrowElement(std::size_t element, const std::string& reason) {
+  throw std::invalid_argument("PlaneStressQ4: element " + std::to_string(element) + " " + reason);
+}
+
+void CheckSize(const Vec& u, int num_dofs, const char* what) {
+  if (u.size() != num_dofs) {
+    throw std::invalid_argument(std::string("PlaneStressQ4::") + what + ": u has size " +
+                                std::to_string(u.size()) + ", expected " +
+                                std::to_string(num_dofs));
+  }
+}
+
+// Plane-stress elasticity times thickness: t E / (1 - nu^2) [[1, nu, 0], [nu, 1, 0],
+// [0, 0, (1 - nu) / 2]], acting on (eps_xx, eps_yy, gamma_xy).
+Eigen::Matrix3d ElasticityMatrix(const PlaneStressMaterial& m) {
+  const double nu = m.poisson_ratio;
+  const double c = m.thickness * m.youngs_modulus / (1.0 - nu * nu);
+  Eigen::Matrix3d d;
+  d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0;
+  return d;
+}
+
+// Element stiffness K_e = sum_gauss B^T D B det J (2 x 2 Gauss, unit weights) of the bilinear
+// isoparametric quadrilateral with nodal coordinates `xy` (row a = node a). Returns false if
+// det J <= 0 at a Gauss point (degenerate or clockwise element).
+bool ElementStiffness(const Eigen::Matrix<double, 4, 2>& xy, const Eigen::Matrix3d& d, Mat8* ke) {
+  const double g = 1.0 / std::sqrt(3.0);
+  ke->setZero();
+  for (int gp = 0; gp < 4; ++gp) {
+    const double xi = (gp == 0 || gp == 3) ? -g : g;
+    const double eta = gp < 2 ? -g : g;
+    // Derivatives of N_a = (1 + xi xi_a)(1 + eta eta_a) / 4 in natural coordinates.
+    Eigen::Matrix<double, 2, 4> dn_nat;
+    for (int a = 0; a < 4; ++a) {
+      dn_nat(0, a) = 0.25 * kXiNode[a] * (1.0 + eta * kEtaNode[a]);
+      dn_nat(1, a) = 0.25 * kEtaNode[a] * (1.0 + xi * kXiNode[a]);
+    }
+    // J(i, j) = d x_j / d xi_i; the physical derivatives are J^{-1} dN/dxi.
+    const Eigen::Matrix2d jac = dn_nat * xy;
+    const double det = jac.determinant();
+    if (!(det > 0.0)) return false;
+    const Eigen::Matrix<double, 2, 4> dn = jac.inverse() * dn_nat;
+    Mat38 b = Mat38::Zero();
+    for (int a = 0; a < 4; ++a) {
+      b(0, 2 * a) = dn(0, a);
+      b(1, 2 * a + 1) = dn(1, a);
+      b(2, 2 * a) = dn(1, a);
+      b(2, 2 * a + 1) = dn(0, a);
+    }
+    ke->noalias() += det * (b.transpose() * (d * b));
+  }
+  // Exactly symmetric in floating point, so that K is (solvers may read one triangle).
+  *ke = 0.5 * (*ke + ke->transpose()).eval();
+  return true;
+}
+
+}  // namespace
+
+PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
+                             PlaneStressMaterial material, std::vector<bool> fixed)
+    : coordinates_(std::move(coordinates)), elements_(std::move(elements)), material_(material) {
+  if (coordinates_.cols() != 2) {
+    throw std::invalid_argument("PlaneStressQ4: coordinates have " +
+                                std::to_string(coordinates_.cols()) + " columns, expected 2");
+  }
+  for (Eigen::Index n = 0; n < coordinates_.rows(); ++n) {
+    if (!coordinates_.row(n).allFinite()) {
+      throw std::invalid_argument("PlaneStressQ4: node " + std::to_string(n) +
+                                  " has non-finite coordinates");
+    }
+  }
+  if (!(material_.youngs_modulus > 0.0) || !std::isfinite(material_.youngs_modulus)) {
+    throw std::invalid_argument("PlaneStressQ4: Young's modulus must be positive, got " +
+                                std::to_string(material_.youngs_modulus));
+  }
+  if (!(material_.thickness > 0.0) || !std::isfinite(material_.thickness)) {
+    throw std::invalid_argument("PlaneStressQ4: thickness must be positive, got " +
+                                std::to_string(material_.thickness));
+  }
+  if (!(material_.poisson_ratio > -1.0 && material_.poisson_ratio < 0.5)) {
+    throw std::invalid_argument("PlaneStressQ4: Poisson's ratio must lie in (-1, 0.5), got " +
+                                std::to_string(material_.poisson_ratio));
+  }
+  const int nodes = num_nodes();
+  if (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nodes) * 2) {
+    throw std::invalid_argument("PlaneStressQ4: `fixed` has " + std::to_string(fixed.size()) +
+                                " entries, expected num_nodes * 2 = " + std::to_string(2 * nodes) +
+                                " (or none)");
+  }
+  dofs_ = DofMap(nodes, 2, fixed);
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Element& el = elements_[e];
+    for (int a = 0; a < 4; ++a) {
+      if (el[a] < 0 || el[a] >= nodes) {
+        ThrowElement(e, "names an unknown node " + std::to_string(el[a]) + " (the mesh has " +
+                            std::to_string(nodes) + " nodes)");
+      }
+      for (int b = 0; b < a; ++b) {
+        if (el[a] == el[b]) ThrowElement(e, "repeats node " + std::to_string(el[a]));
+      }
+    }
+  }
+
+  // Sparsity pattern built directly in compressed column form, O(nnz) memory: K(i, j) is
+  // structurally non-zero iff the nodes of dofs i and j share an element. A triplet list
+  // would hold 64 entries per element (10^7 for the 400 x 400 mesh of P1) and sort them.
+  //
+  // Node adjacency (self included) as CSR, from the elements, then sorted and deduplicated.
+  std::vector<int> adj_start(nodes + 1, 0);
+  for (const Element& el : elements_) {
+    for (int a = 0; a < 4; ++a) adj_start[el[a] + 1] += 4;
+  }
+  for (int n = 0; n < nodes; ++n) adj_start[n + 1] += adj_start[n];
+  std::vector<int> adj(adj_start[nodes]);
+  {
+    std::vector<int> cursor(adj_start.begin(), adj_start.end() - 1);
+    for (const Element& el : elements_) {
+      for (int a = 0; a < 4; ++a) {
+        for (int b = 0; b < 4; ++b) adj[cursor[el[a]]++] = el[b];
+      }
+    }
+  }
+  std::vector<int> adj_count(nodes, 0);
+  for (int n = 0; n < nodes; ++n) {
+    auto first = adj.begin() + adj_start[n];
+    auto last = adj.begin() + adj_start[n + 1];
+    std::sort(first, last);
+    adj_count[n] = static_cast<int>(std::unique(first, last) - first);
+  }
+
+  // Columns follow the dof numbering, which is increasing in (node, component); rows within a
+  // column come out sorted because the adjacency lists are.
+  const int d = dofs_.num_dofs();
+  std::vector<int> outer(d + 1, 0);
+  std::vector<int> inner;
+  {
+    std::size_t estimate = 0;
+    for (int n = 0; n < nodes; ++n) estimate += 4 * static_cast<std::size_t>(adj_count[n]);
+    inner.reserve(estimate);
+  }
+  for (int n = 0; n < nodes; ++n) {
+    for (int c = 0; c < 2; ++c) {
+      const int j = dofs_.dof(n, c);
+      if (j < 0) continue;
+      for (int k = 0; k < adj_count[n]; ++k) {
+        const int m = adj[adj_start[n] + k];
+        for (int c2 = 0; c2 < 2; ++c2) {
+          const int i = dofs_.dof(m, c2);
+          if (i >= 0) inner.push_back(i);
+        }
+      }
+      outer[j + 1] = static_cast<int>(inner.size());
+    }
+  }
+  stiffness_.resize(d, d);
+  stiffness_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), stiffness_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), stiffness_.innerIndexPtr());
+  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + inner.size(), 0.0);
+
+  // Element loop: scatter-add K_e into the slots found by binary search in each column.
+  const Eigen::Matrix3d dmat = ElasticityMatrix(material_);
+  const int* col_start = stiffness_.outerIndexPtr();
+  const int* rows = stiffness_.innerIndexPtr();
+  double* values = stiffness_.valuePtr();
+  Mat8 ke;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Element& el = elements_[e];
+    Eigen::Matrix<double, 4, 2> xy;
+    int dof[8];
+    for (int a = 0; a < 4; ++a) {
+      xy.row(a) = coordinates_.row(el[a]);
+      dof[2 * a] = dofs_.dof(el[a], 0);
+      dof[2 * a + 1] = dofs_.dof(el[a], 1);
+    }
+    if (!ElementStiffness(xy, dmat, &ke)) {
+      ThrowElement(e, "has non-positive area or clockwise node order");
+    }
+    for (int b = 0; b < 8; ++b) {
+      const int j = dof[b];
+      if (j < 0) continue;
+      const int* first = rows + col_start[j];
+      const int* last = rows + col_start[j + 1];
+      for (int a = 0; a < 8; ++a) {
+        if (dof[a] < 0) continue;
+        values[std::lower_bound(first, last, dof[a]) - rows] += ke(a, b);
+      }
+    }
+  }
+}
+
+double PlaneStressQ4::Energy(const Vec& u) const {
+  CheckSize(u, num_dofs(), "Energy");
+  return 0.5 * u.dot(stiffness_ * u);
+}
+
+void PlaneStressQ4::InternalForce(const Vec& u, Vec* force) const {
+  CheckSize(u, num_dofs(), "InternalForce");
+  force->noalias() = stiffness_ * u;
+}
+
+void PlaneStressQ4::Stiffness(const Vec& u, SpMat* stiffness) const {
+  CheckSize(u, num_dofs(), "Stiffness");
+  *stiffness = stiffness_;
+}
+
+// A uniform traction t on a straight edge, interpolated by the linear edge shape functions:
+// the consistent nodal force of each end is integral N_a t thickness ds = t thickness len / 2.
+void PlaneStressQ4::AddEdgeTraction(int node_a, int node_b, const Point& traction,
+                                    Vec* load) const {
+  const int nodes = num_nodes();
+  if (node_a < 0 || node_a >= nodes || node_b < 0 || node_b >= nodes) {
+    throw std::invalid_argument("PlaneStressQ4::AddEdgeTraction: unknown node (" +
+                                std::to_string(node_a) + ", " + std::to_string(node_b) + ")");
+  }
+  if (node_a == node_b) {
+    throw std::invalid_argument("PlaneStressQ4::AddEdgeTraction: the edge joins node " +
+                                std::to_string(node_a) + " to itself");
+  }
+  if (traction.size() != 2) {
+    throw std::invalid_argument("PlaneStressQ4::AddEdgeTraction: traction has " +
+                                std::to_string(traction.size()) + " components, expected 2");
+  }
+  const double length = (coordinates_.row(node_b) - coordinates_.row(node_a)).norm();
+  const Point nodal = (0.5 * material_.thickness * length) * traction;
+  AddNodalForce(dofs_, node_a, nodal, load);
+  AddNodalForce(dofs_, node_b, nodal, load);
+}
+
+void AddNodalForce(const DofMap& dofs, int node, const Point& force, Vec* load) {
+  if (node < 0 || node >= dofs.num_nodes()) {
+    throw std::invalid_argument("AddNodalForce: unknown node " + std::to_string(node));
+  }
+  if (force.size() != dofs.dim()) {
+    throw std::invalid_argument("AddNodalForce: force has " + std::to_string(force.size()) +
+                                " components, expected " + std::to_string(dofs.dim()));
+  }
+  if (load->size() != dofs.num_dofs()) {
+    throw std::invalid_argument("AddNodalForce: load has size " + std::to_string(load->size()) +
+                                ", expected " + std::to_string(dofs.num_dofs()));
+  }
+  // A component on a support is carried by the support reaction, not by u.
+  for (int c = 0; c < dofs.dim(); ++c) {
+    const int dof = dofs.dof(node, c);
+    if (dof >= 0) (*load)[dof] += force[c];
+  }
+}
+
+}  // namespace cb

@@ -1,0 +1,204 @@
+#include "model/truss.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace cb {
+namespace {
+
+[[noreturn]] void ThrowMember(std::size_t member, const std::string& reason) {
+  throw std::invalid_argument("Truss: member " + std::to_string(member) + " " + reason);
+}
+
+void CheckSize(const Vec& u, int num_dofs, const char* what) {
+  if (u.size() != num_dofs) {
+    throw std::invalid_argument(std::string("Truss::") + what + ": u has size " +
+                                std::to_string(u.size()) + ", expected " +
+                                std::to_string(num_dofs));
+  }
+}
+
+// The dofs of a member's two end nodes, [node_i components, node_j components], -1 if fixed.
+struct MemberDofs {
+  int dof[6];
+};
+
+MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
+  MemberDofs out{};
+  const int dim = map.dim();
+  for (int c = 0; c < dim; ++c) {
+    out.dof[c] = map.dof(m.node_i, c);
+    out.dof[dim + c] = map.dof(m.node_j, c);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The current member vector and elongation, free of cancellation. Positions X + u of nodes far
+// from the origin (P3: |X| ~ 40 m) carry rounding errors of 1e-14 m, which E A ~ 1e7 kN turns
+// into 1e-7 kN of spurious force, far above the verdict's tolerance. So the member vector is
+// the exact reference difference plus the displacement difference, and
+//   l - L = (l^2 - L^2) / (l + L) = (2 dX.du + |du|^2) / (l + L)
+// keeps full relative accuracy of the elongation even when it is tiny.
+Truss::Kinematics Truss::MemberKinematics(std::size_t member, const Vec& u) const {
+  const TrussMember& m = members_[member];
+  const int d = dim();
+  Point du = Point::Zero(d);
+  for (int c = 0; c < d; ++c) {
+    const int dof_j = dofs_.dof(m.node_j, c);
+    const int dof_i = dofs_.dof(m.node_i, c);
+    du[c] = (dof_j >= 0 ? u[dof_j] : 0.0) - (dof_i >= 0 ? u[dof_i] : 0.0);
+  }
+  const Point& reference_delta = reference_deltas_[member];
+  Kinematics k;
+  k.delta = reference_delta + du;
+  k.length = k.delta.norm();
+  // Plain loops: GCC 12 misreads Eigen's vectorised reductions on these fixed-capacity points
+  // (a false -Warray-bounds).
+  double dx_du = 0.0;
+  double du_du = 0.0;
+  for (int c = 0; c < d; ++c) {
+    dx_du += reference_delta[c] * du[c];
+    du_du += du[c] * du[c];
+  }
+  k.elongation = (2.0 * dx_du + du_du) / (k.length + lengths_[member]);
+  return k;
+}
+
+Truss::Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool> fixed)
+    : coordinates_(std::move(coordinates)), members_(std::move(members)) {
+  if (coordinates_.cols() != 2 && coordinates_.cols() != 3) {
+    throw std::invalid_argument("Truss: coordinates have " + std::to_string(coordinates_.cols()) +
+                                " columns, expected 2 or 3");
+  }
+  for (Eigen::Index n = 0; n < coordinates_.rows(); ++n) {
+    if (!coordinates_.row(n).allFinite()) {
+      throw std::invalid_argument("Truss: node " + std::to_string(n) +
+                                  " has non-finite coordinates");
+    }
+  }
+  const int nodes = num_nodes();
+  const int d = dim();
+  if (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nodes) * d) {
+    throw std::invalid_argument(
+        "Truss: `fixed` has " + std::to_string(fixed.size()) +
+        " entries, expected num_nodes * dim = " + std::to_string(nodes * d) + " (or none)");
+  }
+  dofs_ = DofMap(nodes, d, fixed);
+
+  lengths_.reserve(members_.size());
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const TrussMember& m = members_[k];
+    if (m.node_i < 0 || m.node_i >= nodes || m.node_j < 0 || m.node_j >= nodes) {
+      ThrowMember(k, "names an unknown node (" + std::to_string(m.node_i) + ", " +
+                         std::to_string(m.node_j) + "; the truss has " + std::to_string(nodes) +
+                         " nodes)");
+    }
+    if (m.node_i == m.node_j)
+      ThrowMember(k, "joins node " + std::to_string(m.node_i) + " to itself");
+    if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus)) {
+      ThrowMember(k, "has non-positive Young's modulus E = " + std::to_string(m.youngs_modulus));
+    }
+    if (!(m.area > 0.0) || !std::isfinite(m.area)) {
+      ThrowMember(k, "has non-positive cross-section area A = " + std::to_string(m.area));
+    }
+    const double length = (coordinates_.row(m.node_j) - coordinates_.row(m.node_i)).norm();
+    if (!(length > 0.0)) ThrowMember(k, "has zero length");
+    lengths_.push_back(length);
+    reference_deltas_.push_back(
+        (coordinates_.row(m.node_j) - coordinates_.row(m.node_i)).transpose());
+  }
+
+  // Stiffness pattern: each member contributes its (2 dim) x (2 dim) block on the free dofs of
+  // its end nodes, in the order Stiffness() adds them.
+  std::vector<ScatterPattern::Entry> entries;
+  entries.reserve(members_.size() * 4 * d * d);
+  for (const TrussMember& m : members_) {
+    const MemberDofs md = DofsOf(dofs_, m);
+    for (int b = 0; b < 2 * d; ++b) {
+      if (md.dof[b] < 0) continue;
+      for (int a = 0; a < 2 * d; ++a) {
+        if (md.dof[a] < 0) continue;
+        entries.emplace_back(md.dof[a], md.dof[b]);
+      }
+    }
+  }
+  const int n = dofs_.num_dofs();
+  stiffness_pattern_ = ScatterPattern(n, n, entries);
+}
+
+double Truss::MemberForce(int member, const Vec& u) const {
+  CheckSize(u, num_dofs(), "MemberForce");
+  const TrussMember& m = members_.at(member);
+  return m.youngs_modulus * m.area * MemberKinematics(member, u).elongation / lengths_[member];
+}
+
+// pi(u) = sum_m E A L ((l - L) / L)^2 / 2 (Biot strain (l - L) / L).
+double Truss::Energy(const Vec& u) const {
+  CheckSize(u, num_dofs(), "Energy");
+  double energy = 0.0;
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const TrussMember& m = members_[k];
+    const double reference = lengths_[k];
+    const double strain = MemberKinematics(k, u).elongation / reference;
+    energy += 0.5 * m.youngs_modulus * m.area * reference * strain * strain;
+  }
+  return energy;
+}
+
+// d pi / d x_j = N e = -d pi / d x_i, with e = (x_j - x_i) / l, since d l / d x_j = e and
+// d pi_m / d l = E A (l - L) / L = N.
+// A member collapsed to zero current length has no direction: the result is then non-finite,
+// which solvers treat as a failed evaluation.
+void Truss::InternalForce(const Vec& u, Vec* force) const {
+  CheckSize(u, num_dofs(), "InternalForce");
+  const int d = dim();
+  force->setZero(num_dofs());
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const TrussMember& m = members_[k];
+    const Kinematics kin = MemberKinematics(k, u);
+    const double axial = m.youngs_modulus * m.area * kin.elongation / lengths_[k];
+    const Point f = (axial / kin.length) * kin.delta;
+    const MemberDofs md = DofsOf(dofs_, m);
+    for (int c = 0; c < d; ++c) {
+      if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f[c];
+      if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f[c];
+    }
+  }
+}
+
+// Member block k = E A / L e e^T + N / l (I - e e^T) (material + geometric stiffness), placed
+// as [[k, -k], [-k, k]] on (node_i, node_j).
+void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
+  CheckSize(u, num_dofs(), "Stiffness");
+  const int d = dim();
+  stiffness_pattern_.Reset(stiffness);
+  double* values = stiffness->valuePtr();
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const TrussMember& m = members_[k];
+    const Kinematics kin = MemberKinematics(k, u);
+    const double length = kin.length;
+    const double reference = lengths_[k];
+    const double ea = m.youngs_modulus * m.area;
+    const double axial = ea * kin.elongation / reference;
+    const Point e = kin.delta / length;
+    PointMat block = (axial / length) * PointMat::Identity(d, d);
+    block.noalias() += (ea / reference - axial / length) * e * e.transpose();
+    const MemberDofs md = DofsOf(dofs_, m);
+    for (int b = 0; b < 2 * d; ++b) {
+      if (md.dof[b] < 0) continue;
+      for (int a = 0; a < 2 * d; ++a) {
+        if (md.dof[a] < 0) continue;
+        // Same node side -> +k, opposite sides -> -k.
+        const double s = ((a < d) == (b < d)) ? 1.0 : -1.0;
+        values[stiffness_pattern_.slot(next++)] += s * block(a % d, b % d);
+      }
+    }
+  }
+}
+
+}  // namespace cb

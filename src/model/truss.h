@@ -1,0 +1,57 @@
+// Pin-jointed truss in 2-D or 3-D with linear elastic members and Biot (engineering) strain:
+// member force N = E A (l - L) / L, energy E A L ((l - L) / L)^2 / 2. The energy, gradient and
+// Hessian are geometrically exact (large displacements).
+#pragma once
+
+#include <vector>
+
+#include "core/sparse.h"
+#include "model/elastic_body.h"
+
+namespace cb {
+
+struct TrussMember {
+  int node_i = 0;
+  int node_j = 0;
+  double youngs_modulus = 0.0;  // E
+  double area = 0.0;            // A
+};
+
+class Truss final : public ElasticBody {
+ public:
+  // `coordinates`: one row per node, dim() = 2 or 3 columns. `fixed[n * dim + c]` marks
+  // supported components (size num_nodes * dim, or empty for none). Throws
+  // std::invalid_argument for unknown nodes, zero-length members, E <= 0 or A <= 0.
+  Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool> fixed = {});
+
+  int dim() const override { return static_cast<int>(coordinates_.cols()); }
+  int num_nodes() const override { return static_cast<int>(coordinates_.rows()); }
+  const DofMap& dofs() const override { return dofs_; }
+  Point reference(int node) const override { return coordinates_.row(node).transpose(); }
+  bool is_linear() const override { return false; }
+  double Energy(const Vec& u) const override;
+  void InternalForce(const Vec& u, Vec* force) const override;
+  void Stiffness(const Vec& u, SpMat* stiffness) const override;
+
+  const std::vector<TrussMember>& members() const { return members_; }
+  double ReferenceLength(int member) const { return lengths_[member]; }
+  // Axial force N = E A (l - L) / L of a member (tension positive).
+  double MemberForce(int member, const Vec& u) const;
+
+ private:
+  struct Kinematics {
+    Point delta;        // x_j - x_i
+    double length;      // l = |x_j - x_i|
+    double elongation;  // l - L, computed without cancellation
+  };
+  Kinematics MemberKinematics(std::size_t member, const Vec& u) const;
+
+  Mat coordinates_;
+  std::vector<TrussMember> members_;
+  std::vector<double> lengths_;
+  std::vector<Point> reference_deltas_;  // X_j - X_i
+  DofMap dofs_;
+  ScatterPattern stiffness_pattern_;
+};
+
+}  // namespace cb

@@ -1,0 +1,96 @@
+// The path driver: traces a loading path by the arc-length method (METHOD.md sections 3-6)
+// with any Formulation, judging every step by the verdict. It knows formulations only through
+// the common interface, and observes through PathObserver (no I/O here).
+#pragma once
+
+#include <string>
+
+#include "model/contact_model.h"
+#include "step/formulation.h"
+#include "verdict/verdict.h"
+
+namespace cb {
+
+struct PathOptions {
+  double arc_length = 0.1;     // theta of (33)
+  double lambda_weight = 1.0;  // w of ||(du, dlambda)||_H
+  int max_steps = 100;         // accepted steps to take
+  double tolerance = 1e-8;     // verdict tolerance (METHOD.md section 7)
+  StartKind start = StartKind::kWarm;
+  // A step that fails the verdict (or turns back) is retried with theta halved, at most this
+  // many times; then the path stops with Status::kFailed. After an accepted step theta grows
+  // back by a factor 2 up to its nominal value.
+  int max_cutbacks = 6;
+  bool locate_kinks = true;  // solve (53) for each pair whose contact status changed
+  SolveControls controls;    // per-step time limit and interrupt hook
+
+  bool IsValid(std::string* why) const;
+};
+
+// One solve of one step.
+struct StepAttempt {
+  int step = 0;     // 1-based index of the step being taken
+  int attempt = 0;  // 0 first, then one per cut-back
+  ConstraintKind kind = ConstraintKind::kArcLength;
+  double arc_length = 0.0;  // theta used (arc-length steps)
+  StepResult result;
+  Verdict verdict;
+  bool reversed = false;  // the answer turned back on the path (the guard rejected it)
+  bool accepted = false;
+  State state;        // the state the attempt reached (base + increment)
+  int n_contact = 0;  // pairs in contact at `state` (CountContacts)
+  int kinks = 0;      // kinks located between the previous state and this one
+};
+
+// A nonsmooth point of the path (METHOD.md section 6): where pair `pair` has g = r = 0,
+// located by solving (29)-(32) with (53) from the accepted state before it.
+struct KinkRecord {
+  int step = 0;  // located between accepted steps step - 1 and step
+  int pair = 0;
+  StepResult result;
+  Verdict verdict;
+  bool between = false;  // the point lies on the path between the two bracketing steps
+  State state;
+};
+
+class PathObserver {
+ public:
+  virtual ~PathObserver() = default;
+  virtual void OnAttempt(const StepAttempt& /*attempt*/) {}
+  virtual void OnKink(const KinkRecord& /*kink*/) {}
+};
+
+struct PathSummary {
+  Status status = Status::kNotRun;  // kConverged when every requested step was accepted
+  std::string message;
+  int accepted_steps = 0;
+  int attempts = 0;
+  int kinks = 0;
+  State final_state;
+};
+
+// The tangent predictor of METHOD.md section 5: solves
+//   [K_t  -G_c^T] [du]   [f]
+//   [G_c    0   ] [dr] = [0],   K_t = hess pi - sum_p r_p hess phi_p,
+// with G_c the gap-Jacobian rows of the pairs closed at `state` (g/L + r/R <= 0), and scales
+// (du, 1) to ||(du, dlambda)||_H = theta with dlambda > 0. Returns false with *why when the
+// bordered stiffness is singular.
+bool TangentPredictor(const ContactModel& model, const ContactScales& scales, const State& state,
+                      double theta, double lambda_weight, Vec* du, double* dlambda,
+                      std::string* why);
+
+// Traces max_steps arc-length steps from `initial`.
+PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& scales,
+                               const State& initial, Formulation& formulation,
+                               const PathOptions& options, PathObserver* observer);
+
+// One fixed-load step from `initial` to lambda (P1). Warm start: du0 = 0, r0 = initial.r;
+// cold start: the formulation's fixed start.
+PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scales,
+                           const State& initial, double lambda, Formulation& formulation,
+                           const PathOptions& options, PathObserver* observer);
+
+// The unloaded state: u = 0, r = 0, lambda = 0.
+State ZeroState(const ContactModel& model);
+
+}  // namespace cb

@@ -1,0 +1,23 @@
+// Builders of the named problems (PROBLEMS.md). Each has a Defaults() declaring its parameters
+// and a Build() from them; the registry wires them to names.
+#pragma once
+
+#include "problems/problem.h"
+
+namespace cb {
+
+Parameters BlockDefaults();
+Problem BuildBlock(const Parameters& p);
+
+Parameters ArchFlatDefaults();
+Parameters ArchCurvedDefaults();
+Problem BuildArch(const Parameters& p);
+
+Parameters BarWallDefaults();
+Problem BuildBarWall(const Parameters& p);
+
+Parameters TwoBarDefaults();
+Parameters TwoBarObstacleDefaults();
+Problem BuildTwoBar(const Parameters& p);
+
+}  // namespace cb

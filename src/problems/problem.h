@@ -1,0 +1,58 @@
+// A named benchmark problem: the contact model built from its parameters, with the loading
+// path the report traces on it.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/body_contact_model.h"
+#include "problems/parameters.h"
+#include "step/step_problem.h"
+
+namespace cb {
+
+// How the problem is loaded: one fixed-load solve (P1), or an arc-length path (P2, P3).
+enum class LoadingKind { kFixedLoad, kArcLength };
+
+struct Problem {
+  std::string name;
+  std::string description;
+  std::string units;  // how lengths and forces in the records are measured
+  std::shared_ptr<const ContactModel> model;
+  // The same model seen as a body against obstacles (nodes, pairs), for solution records;
+  // null for models that are not mechanical bodies.
+  std::shared_ptr<const BodyContactModel> body;
+  ContactScales scales;
+  LoadingKind loading = LoadingKind::kArcLength;
+  double load = 1.0;        // kFixedLoad: the lambda of the single solve
+  double arc_length = 0.1;  // kArcLength: theta
+  int steps = 100;          // kArcLength: default number of steps
+  int control_dof = -1;     // the displacement recorded as control_disp (-1: none)
+  std::string control_label;
+  Parameters parameters;  // as used to build it
+};
+
+using ProblemFactory = std::function<Problem(const std::map<std::string, std::string>&)>;
+
+struct ProblemInfo {
+  std::string name;
+  std::string description;
+  ProblemFactory factory;
+  std::function<Parameters()> defaults;  // the declared parameters with default values
+};
+
+// The registry, in a fixed order: block, arch-flat, arch-curved, then verification problems.
+const std::vector<ProblemInfo>& ProblemRegistry();
+std::vector<std::string> ProblemNames();
+// Throws std::invalid_argument for an unknown name (listing the valid ones) or a bad setting.
+Problem MakeProblem(const std::string& name,
+                    const std::map<std::string, std::string>& settings = {});
+
+// Parameters every problem has: the contact scales of METHOD.md section 2.
+void DeclareScaleParameters(double length, double force, Parameters* parameters);
+ContactScales ScalesFrom(const Parameters& parameters);
+
+}  // namespace cb

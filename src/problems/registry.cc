@@ -1,0 +1,81 @@
+#include <stdexcept>
+
+#include "problems/builders.h"
+#include "problems/problem.h"
+
+namespace cb {
+
+void DeclareScaleParameters(double length, double force, Parameters* parameters) {
+  parameters->DeclareReal("length_scale", length,
+                          "L of psi(g/L, -r/R, rho): a typical gap, in the problem's length unit",
+                          0.0, 1e30, true);
+  parameters->DeclareReal(
+      "force_scale", force,
+      "R of psi(g/L, -r/R, rho): a typical reaction, in the problem's force unit", 0.0, 1e30, true);
+}
+
+ContactScales ScalesFrom(const Parameters& parameters) {
+  return {parameters.Real("length_scale"), parameters.Real("force_scale")};
+}
+
+namespace {
+
+template <Parameters (*Defaults)(), Problem (*Build)(const Parameters&)>
+ProblemInfo Entry(const std::string& name, const std::string& description) {
+  ProblemInfo info;
+  info.name = name;
+  info.description = description;
+  info.defaults = Defaults;
+  info.factory = [](const std::map<std::string, std::string>& settings) {
+    Parameters p = Defaults();
+    p.Apply(settings);
+    return Build(p);
+  };
+  return info;
+}
+
+}  // namespace
+
+const std::vector<ProblemInfo>& ProblemRegistry() {
+  static const std::vector<ProblemInfo> registry = {
+      Entry<BlockDefaults, BuildBlock>(
+          "block", "P1: plane-stress Q4 block pressed into a wall and a floor, fixed load"),
+      Entry<ArchFlatDefaults, BuildArch>(
+          "arch-flat", "P2: two-layer arch truss between two flat obstacles, arc length"),
+      Entry<ArchCurvedDefaults, BuildArch>(
+          "arch-curved", "P3: two-layer arch truss, flat and cylindrical obstacles, arc length"),
+      Entry<BarWallDefaults, BuildBarWall>(
+          "bar-wall", "verification: a bar pushed against a wall (closed form)"),
+      Entry<TwoBarDefaults, BuildTwoBar>(
+          "two-bar", "verification: von Mises two-bar truss snap-through (closed form)"),
+      Entry<TwoBarObstacleDefaults, BuildTwoBar>(
+          "two-bar-obstacle",
+          "verification: two-bar truss snapping onto a floor under its apex (closed form)"),
+  };
+  return registry;
+}
+
+std::vector<std::string> ProblemNames() {
+  std::vector<std::string> names;
+  for (const auto& info : ProblemRegistry()) names.push_back(info.name);
+  return names;
+}
+
+Problem MakeProblem(const std::string& name, const std::map<std::string, std::string>& settings) {
+  for (const auto& info : ProblemRegistry()) {
+    if (info.name == name) {
+      try {
+        Problem problem = info.factory(settings);
+        problem.name = info.name;  // builders shared by several entries name the entry here
+        return problem;
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("problem '" + name + "': " + e.what());
+      }
+    }
+  }
+  std::string valid;
+  for (const auto& n : ProblemNames()) valid += (valid.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown problem '" + name + "' (valid: " + valid + ")");
+}
+
+}  // namespace cb

@@ -1,0 +1,33 @@
+// Sparse direct solvers for the (non-symmetric) Newton systems J dx = -F. The symbolic analysis
+// (ordering) is done on the first factorisation and redone only when the pattern changes, so a
+// path of many steps with one pattern analyses it once.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace cb {
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual std::string name() const = 0;
+  // Numerical factorisation of A (square). Returns false when A is singular to working
+  // precision (or the factorisation otherwise fails); message() says why.
+  virtual bool Factorize(const SpMat& a) = 0;
+  // x = A^{-1} b with the last successful factorisation. Returns false on failure.
+  virtual bool Solve(const Vec& b, Vec* x) = 0;
+  // How many symbolic analyses were done (for tests and benchmarks).
+  virtual int num_analyses() const = 0;
+  virtual const std::string& message() const = 0;
+};
+
+// Names accepted by MakeLinearSolver, the default first.
+std::vector<std::string> LinearSolverNames();
+// Throws std::invalid_argument listing the valid names for an unknown one.
+std::unique_ptr<LinearSolver> MakeLinearSolver(const std::string& name);
+
+}  // namespace cb

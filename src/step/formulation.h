@@ -1,0 +1,90 @@
+// The common interface of every rendering of a loading step (ARCHITECTURE.md "Interfaces").
+// Solve() is non-virtual: it validates, times and fills the common fields, then calls the
+// private DoSolve (the pattern of Drake's SolverBase).
+#pragma once
+
+#include <any>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "step/step_problem.h"
+
+namespace cb {
+
+enum class StartKind { kWarm, kCold };
+const char* ToString(StartKind kind);
+
+// What the path driver hands a formulation as its start.
+//  kWarm: `du`, `dlambda` the predicted increment (the previous step's increment scaled to this
+//         step's size, or the tangent predictor on the first step), `r` the reactions of the
+//         known state; `previous` the backend state of the previous step's result, if any.
+//  kCold: a fixed start that does not use the previous step (each formulation documents it).
+struct StartPoint {
+  StartKind kind = StartKind::kWarm;
+  Vec du;
+  double dlambda = 0.0;
+  Vec r;
+  std::any previous;
+};
+
+struct SolveCounts {
+  int iterations = 0;
+  int residual_evals = 0;
+  int jacobian_evals = 0;
+  int linear_solves = 0;
+};
+
+// One row of the per-iteration history.
+struct IterationRecord {
+  int iteration = 0;
+  double merit = 0.0;         // 1/2 ||F||^2 of the formulation's own system
+  double residual_inf = 0.0;  // ||F||_inf of the formulation's own system
+  double comp_res = 0.0;      // ||min(g/L, -r/R)||_inf at the iterate, where cheap (else NaN)
+  double step_length = 0.0;
+};
+
+struct StepResult {
+  StepPoint point;
+  Status status = Status::kNotRun;  // the solver's own claim ("found")
+  std::string message;
+  SolveCounts counts;
+  double time_s = 0.0;  // wall time of the solve alone
+  std::vector<IterationRecord> history;
+  std::map<std::string, std::string> details;  // backend specifics (raw return codes, ...)
+  std::any backend_state;                      // what a warm start of the next step may reuse
+};
+
+// Limits and hooks the harness sets for every formulation alike.
+struct SolveControls {
+  double time_limit_s = 0.0;           // 0: none
+  std::function<bool()> interrupted;   // polled between iterations; true stops the solve
+};
+
+class Formulation {
+ public:
+  virtual ~Formulation() = default;
+  virtual std::string name() const = 0;
+  // The solver or backend doing the work (records' `solver` column).
+  virtual std::string solver() const = 0;
+  // The settings that distinguish this instance in the records (solver, eta case, ...).
+  virtual std::string settings() const = 0;
+  // Whether the dependency this formulation needs was built.
+  virtual bool available() const { return true; }
+  // Whether this formulation can express the step constraint (e.g. an energy NLP cannot
+  // express an arc-length step).
+  virtual bool Supports(ConstraintKind kind) const = 0;
+
+  // Throws std::invalid_argument on a malformed step or start (sizes) or an unsupported
+  // constraint kind, with the reason.
+  StepResult Solve(const StepProblem& step, const StartPoint& start,
+                   const SolveControls& controls = {});
+
+ private:
+  virtual void DoSolve(const StepProblem& step, const StartPoint& start,
+                       const SolveControls& controls, StepResult* result) = 0;
+};
+
+}  // namespace cb

@@ -1,0 +1,255 @@
+// The implicit smoothed-FB formulation: Proposition 3.1, the eta equations, the warm and cold
+// starts of METHOD.md section 4, and the Jacobian of (29)-(33) against finite differences.
+#include "formulations/implicit_fb/implicit_fb.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "fd_check.h"
+#include "path/path.h"
+#include "problems/problem.h"
+#include "verdict/verdict.h"
+
+namespace cb {
+namespace {
+
+TEST(ImplicitFbTest, Proposition31OnAGrid) {
+  // psi(a, b, rho) = 0 exactly when a >= 0, b >= 0 and a b = rho^2. The grid values are exact
+  // in binary, so a b == rho^2 is decided without rounding.
+  int zeros = 0;
+  for (double a = -2.0; a <= 2.0; a += 0.25) {
+    for (double b = -2.0; b <= 2.0; b += 0.25) {
+      for (double rho : {0.0, 0.25, 0.5, 1.0, 1.5}) {
+        const bool holds = a >= 0.0 && b >= 0.0 && a * b == rho * rho;
+        const double psi = SmoothedFischerBurmeister(a, b, rho);
+        if (holds) {
+          ++zeros;
+          EXPECT_NEAR(psi, 0.0, 1e-14) << a << " " << b << " " << rho;
+        } else {
+          EXPECT_GT(std::abs(psi), 1e-6) << a << " " << b << " " << rho;
+        }
+      }
+    }
+  }
+  EXPECT_GT(zeros, 20);
+}
+
+TEST(ImplicitFbTest, EtaEquationsHaveTheirCompatibleRoots) {
+  for (EtaCase eta : {EtaCase::kCase1, EtaCase::kCase2, EtaCase::kCase3}) {
+    for (double gamma : {1.0, 0.3}) {
+      const EtaEquation e{eta, gamma};
+      for (double m : {-3.0, -1.0, -0.01, 0.0}) {
+        const double rho = e.CompatibleRho(m);
+        EXPECT_NEAR(e.Value(m, rho), 0.0, 1e-13) << static_cast<int>(eta) << " m=" << m;
+      }
+      // The only root with m = -rho^2 (every pair at a b = rho^2) is rho = 0 (section 2).
+      for (double rho : {0.05, 0.3, 1.0}) EXPECT_NE(e.Value(-rho * rho, rho), 0.0);
+      // Analytic derivatives against differences.
+      const double h = 1e-6;
+      for (double rho : {-0.2, 0.1, 0.7}) {
+        const double m = -0.4;
+        EXPECT_NEAR(e.DerivativeRho(rho), (e.Value(m, rho + h) - e.Value(m, rho - h)) / (2 * h),
+                    1e-7);
+        EXPECT_NEAR(e.DerivativeMean(rho), (e.Value(m + h, rho) - e.Value(m - h, rho)) / (2 * h),
+                    1e-7);
+      }
+    }
+  }
+}
+
+// A model with a few pairs for the start tests.
+Problem SmallArch() { return MakeProblem("arch-curved", {{"upper_nodes", "6"}}); }
+
+TEST(ImplicitFbTest, ColdStartRhoMatchesTheReport) {
+  // Report section 5.1: g0 = -1, r0 = +1, so -g0^T r0 / nc = 1.
+  const Problem p = SmallArch();
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
+  StartPoint cold;
+  cold.kind = StartKind::kCold;
+  const double expected[] = {std::log(2.0), 0.6823278038280193, std::sqrt(0.5)};
+  for (int eta = 1; eta <= 3; ++eta) {
+    ImplicitFbOptions o;
+    o.eta = static_cast<EtaCase>(eta);
+    const ImplicitFbStart s = MakeImplicitFbStart(step, cold, o);
+    const ImplicitFbLayout l{p.model->num_dofs(), p.model->num_pairs()};
+    EXPECT_NEAR(s.x[l.rho()], expected[eta - 1], 1e-12) << "eta case " << eta;
+    EXPECT_DOUBLE_EQ(s.gamma, 1.0);
+  }
+  EXPECT_NEAR(0.6931, std::log(2.0), 1e-4);
+  EXPECT_NEAR(0.6823, expected[1], 1e-4);
+  EXPECT_NEAR(0.7071, expected[2], 1e-4);
+}
+
+// The warm start point satisfies (30), (32) and (33) exactly when |rho*| > rho_ (METHOD.md
+// section 4), with gamma = 1 and with gamma < 1.
+void ExpectWarmStartSatisfiesRows(double reaction_sign) {
+  const Problem p = SmallArch();
+  const int d = p.model->num_dofs();
+  const int nc = p.model->num_pairs();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  State base = ZeroState(*p.model);
+  for (int i = 0; i < d; ++i) base.u[i] = 0.01 * unit(rng);
+  // Reactions: physical (r <= 0) give gamma = 1; wrong-signed, large ones force gamma < 1.
+  for (int q = 0; q < nc; ++q)
+    base.r[q] = reaction_sign * p.scales.force * (0.5 + std::abs(unit(rng)));
+  StepProblem step{p.model.get(), base, StepConstraint::ArcLength(0.1), p.scales};
+  StartPoint warm;
+  warm.du = Vec::NullaryExpr(d, [&] { return 0.02 * unit(rng); });
+  warm.dlambda = 0.3;  // deliberately not on the arc: the start rescales onto it
+  warm.r = base.r;
+  ImplicitFbOptions o;
+  o.eta = EtaCase::kCase1;
+  const ImplicitFbStart s = MakeImplicitFbStart(step, warm, o);
+  if (reaction_sign > 0) {
+    EXPECT_LT(s.gamma, 1.0);
+  } else {
+    EXPECT_DOUBLE_EQ(s.gamma, 1.0);
+  }
+  ASSERT_GT(std::abs(s.rho_star), o.rho_min);
+  ImplicitFbSystem system(step, EtaEquation{o.eta, s.gamma});
+  Vec f;
+  ASSERT_TRUE(system.Residual(s.x, &f));
+  const ImplicitFbLayout& l = system.layout();
+  EXPECT_LT(f.segment(l.d, nc).lpNorm<Eigen::Infinity>(), 1e-13);  // (30)
+  EXPECT_LT(std::abs(f[l.d + 2 * nc]), 1e-13);                     // (32)
+  EXPECT_LT(std::abs(f[l.d + 2 * nc + 1]), 1e-13);                 // (33)
+}
+
+TEST(ImplicitFbTest, WarmStartSatisfies30_32_33WithGammaOne) { ExpectWarmStartSatisfiesRows(-1.0); }
+TEST(ImplicitFbTest, WarmStartSatisfies30_32_33WithGammaBelowOne) {
+  ExpectWarmStartSatisfiesRows(+1.0);
+}
+
+// Finite-difference check of the full Jacobian of (29)-(33), per eta case and constraint kind,
+// at random points of a truss against a flat and a curved obstacle.
+struct JacobianCase {
+  int eta;
+  ConstraintKind kind;
+};
+
+class ImplicitFbJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
+
+TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
+  const JacobianCase c = GetParam();
+  const Problem p = SmallArch();
+  const int d = p.model->num_dofs();
+  const int nc = p.model->num_pairs();
+  std::mt19937 rng(11 + c.eta);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  State base = ZeroState(*p.model);
+  for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(rng);
+  for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(rng));
+  base.lambda = 3.0;
+  StepConstraint constraint;
+  switch (c.kind) {
+    case ConstraintKind::kArcLength:
+      constraint = StepConstraint::ArcLength(0.1, 0.7);
+      break;
+    case ConstraintKind::kFixedLoad:
+      constraint = StepConstraint::FixedLoad(4.0);
+      break;
+    case ConstraintKind::kDisplacement:
+      constraint = StepConstraint::Displacement(0, 0.01);
+      break;
+    case ConstraintKind::kKink:
+      constraint = StepConstraint::Kink(nc - 1);
+      break;
+  }
+  StepProblem step{p.model.get(), base, constraint, {0.1, 2.0}};
+  ImplicitFbSystem system(step, EtaEquation{static_cast<EtaCase>(c.eta), 0.8});
+  const ImplicitFbLayout& l = system.layout();
+  Vec x(l.size());
+  for (int i = 0; i < l.size(); ++i) x[i] = unit(rng);
+  x.segment(0, d) *= 0.05;
+  x[l.rho()] = c.eta == 4 ? 0.0 : 0.3;
+  SpMat jac;
+  system.Jacobian(x, &jac);
+  auto residual = [&](const Vec& y) {
+    Vec f;
+    system.Residual(y, &f);
+    return f;
+  };
+  Mat fd = testing::FiniteDifferenceJacobian(residual, x);
+  if (c.eta == 4) {
+    // rho fixed at 0: F3 is differentiable in g and r away from a = b = 0 but not in rho
+    // (|rho| kink); compare every column but rho's.
+    fd.col(l.rho()) = Mat(jac).col(l.rho());
+  }
+  EXPECT_DERIVATIVE_NEAR(Mat(jac), fd, 1e-6);
+  // A second evaluation elsewhere reuses the pattern and still matches.
+  x.segment(0, d) *= -0.5;
+  system.Jacobian(x, &jac);
+  fd = testing::FiniteDifferenceJacobian(residual, x);
+  if (c.eta == 4) fd.col(l.rho()) = Mat(jac).col(l.rho());
+  EXPECT_DERIVATIVE_NEAR(Mat(jac), fd, 1e-6);
+}
+
+std::vector<JacobianCase> AllJacobianCases() {
+  std::vector<JacobianCase> cases;
+  for (int eta = 1; eta <= 4; ++eta) {
+    for (ConstraintKind k : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
+                             ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+      cases.push_back({eta, k});
+    }
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(EtaAndConstraint, ImplicitFbJacobianTest,
+                         ::testing::ValuesIn(AllJacobianCases()),
+                         [](const ::testing::TestParamInfo<JacobianCase>& info) {
+                           std::string kind = ToString(info.param.kind);
+                           for (char& ch : kind) {
+                             if (ch == '-') ch = '_';
+                           }
+                           return "eta" + std::to_string(info.param.eta) + "_" + kind;
+                         });
+
+TEST(ImplicitFbTest, NonsmoothCaseHasAFiniteJacobianAtTheDegeneratePoint) {
+  const Problem p = MakeProblem("bar-wall");
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
+  ImplicitFbSystem system(step, EtaEquation{EtaCase::kNonsmooth, 1.0});
+  Vec x = Vec::Zero(system.size());  // g = r = rho = 0: psi is not differentiable here
+  SpMat jac;
+  system.Jacobian(x, &jac);
+  EXPECT_TRUE(Mat(jac).allFinite());
+}
+
+// P1 (n = 50) from the report's cold start, eta cases 1 and 2, Newton and dogleg: verified.
+class BlockColdSolveTest : public ::testing::TestWithParam<std::tuple<int, std::string>> {};
+
+TEST_P(BlockColdSolveTest, IsVerified) {
+  const auto [eta, solver] = GetParam();
+  const Problem p = MakeProblem("block");
+  ImplicitFbOptions o;
+  o.eta = static_cast<EtaCase>(eta);
+  o.solver = solver;
+  ImplicitFb formulation(o);
+  PathOptions options;
+  options.start = StartKind::kCold;
+  const PathSummary s =
+      SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), 1.0, formulation, options, nullptr);
+  EXPECT_EQ(s.status, Status::kConverged) << s.message;
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
+  StepPoint point{s.final_state.u, Vec(), s.final_state.r, 1.0};
+  const Verdict v = Judge(step, point, 1e-8);
+  EXPECT_TRUE(v.verified) << v.eq_res << " " << v.comp_res << " " << v.feas_res;
+  // Equilibrium of the whole body: the wall and the floor carry the 10 kN load components.
+  const Vec& r = s.final_state.r;
+  EXPECT_NEAR(r.head(51).sum(), -1e4, 1e-4);  // wall pairs, reaction along -x normal
+  EXPECT_NEAR(r.tail(51).sum(), -1e4, 1e-4);  // floor pairs
+}
+
+INSTANTIATE_TEST_SUITE_P(EtaAndSolver, BlockColdSolveTest,
+                         ::testing::Combine(::testing::Values(1, 2),
+                                            ::testing::Values("newton", "dogleg")),
+                         [](const ::testing::TestParamInfo<std::tuple<int, std::string>>& info) {
+                           return "eta" + std::to_string(std::get<0>(info.param)) + "_" +
+                                  std::get<1>(info.param);
+                         });
+
+}  // namespace
+}  // namespace cb

@@ -1,0 +1,818 @@
+// Tests of src/solvers: the sparse linear-solver wrappers and the three equation solvers on
+// small systems with known solutions.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/types.h"
+#include "solvers/equation_solver.h"
+#include "solvers/equation_system.h"
+#include "solvers/linear_solver.h"
+
+namespace cb {
+namespace {
+
+// ----------------------------------------------------------------------------------------------
+// Test systems with known solutions.
+
+double InfNorm(const Vec& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
+
+// F(x) = A x - b with a nonsymmetric tridiagonal A and b = A x*: one Newton step is exact.
+class LinearTestSystem : public EquationSystem {
+ public:
+  explicit LinearTestSystem(int n) : a_(n, n), solution_(n) {
+    std::vector<Triplet> entries;
+    for (int i = 0; i < n; ++i) {
+      entries.emplace_back(i, i, 4.0 + 0.01 * i);
+      if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+      if (i + 1 < n) entries.emplace_back(i, i + 1, -2.0);
+      solution_[i] = std::sin(1.0 + i);
+    }
+    a_.setFromTriplets(entries.begin(), entries.end());
+    b_ = a_ * solution_;
+  }
+  int size() const override { return static_cast<int>(a_.rows()); }
+  bool Residual(const Vec& x, Vec* f) override {
+    *f = a_ * x - b_;
+    return true;
+  }
+  void Jacobian(const Vec&, SpMat* j) override { *j = a_; }
+  const Vec& solution() const { return solution_; }
+
+ private:
+  SpMat a_;
+  Vec b_, solution_;
+};
+
+// Rosenbrock's function as equations: F = (10 (x2 - x1^2), 1 - x1), root (1, 1).
+class RosenbrockSystem : public EquationSystem {
+ public:
+  int size() const override { return 2; }
+  bool Residual(const Vec& x, Vec* f) override {
+    f->resize(2);
+    (*f)[0] = 10.0 * (x[1] - x[0] * x[0]);
+    (*f)[1] = 1.0 - x[0];
+    return true;
+  }
+  void Jacobian(const Vec& x, SpMat* j) override {
+    const std::vector<Triplet> entries = {{0, 0, -20.0 * x[0]}, {0, 1, 10.0}, {1, 0, -1.0}};
+    j->resize(2, 2);
+    j->setFromTriplets(entries.begin(), entries.end());
+  }
+  static Vec Start() { return Vec{{-1.2, 1.0}}; }
+  static Vec Solution() { return Vec{{1.0, 1.0}}; }
+};
+
+// Powell's badly scaled function: F = (1e4 x1 x2 - 1, exp(-x1) + exp(-x2) - 1.0001).
+class PowellBadlyScaledSystem : public EquationSystem {
+ public:
+  int size() const override { return 2; }
+  bool Residual(const Vec& x, Vec* f) override {
+    f->resize(2);
+    (*f)[0] = 1e4 * x[0] * x[1] - 1.0;
+    (*f)[1] = std::exp(-x[0]) + std::exp(-x[1]) - 1.0001;
+    return true;
+  }
+  void Jacobian(const Vec& x, SpMat* j) override {
+    const std::vector<Triplet> entries = {
+        {0, 0, 1e4 * x[1]}, {0, 1, 1e4 * x[0]}, {1, 0, -std::exp(-x[0])}, {1, 1, -std::exp(-x[1])}};
+    j->resize(2, 2);
+    j->setFromTriplets(entries.begin(), entries.end());
+  }
+  static Vec Start() { return Vec{{0.0, 1.0}}; }
+  // x1 x2 = 1e-4 exactly, so x2 solves exp(-1e-4 / x2) + exp(-x2) = 1.0001 (decreasing on
+  // [1, 20]); bisection to rounding.
+  static Vec Solution() {
+    auto g = [](double x2) { return std::exp(-1e-4 / x2) + std::exp(-x2) - 1.0001; };
+    double lo = 1.0, hi = 20.0;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (g(mid) > 0.0 ? lo : hi) = mid;
+    }
+    const double x2 = 0.5 * (lo + hi);
+    return Vec{{1e-4 / x2, x2}};
+  }
+};
+
+// The discretised Bratu problem -u'' = lambda exp(u) on (0, 1), u(0) = u(1) = 0, with n
+// interior nodes, made to have a known discrete solution: the right-hand side r is chosen so
+// that the nodal values of the exact continuous solution
+//   u(t) = -2 log(cosh((t - 1/2) theta / 2) / cosh(theta / 4)),  theta = sqrt(2 lambda) cosh(theta
+//   / 4)
+// solve the discrete equations exactly. r is O(h^2) (the discretisation error), so this is
+// Bratu's problem up to a small perturbation.
+class BratuSystem : public EquationSystem {
+ public:
+  BratuSystem(int n, double lambda) : n_(n), lambda_(lambda), solution_(n), r_(n) {
+    double theta = 1.0;  // fixed point on the lower branch; the map is a contraction there
+    for (int i = 0; i < 200; ++i) theta = std::sqrt(2.0 * lambda) * std::cosh(theta / 4.0);
+    h_ = 1.0 / (n + 1);
+    for (int i = 0; i < n; ++i) {
+      const double t = (i + 1) * h_;
+      solution_[i] = -2.0 * std::log(std::cosh((t - 0.5) * theta / 2.0) / std::cosh(theta / 4.0));
+    }
+    r_.setZero();
+    Vec f(n);
+    Residual(solution_, &f);
+    r_ = f;
+  }
+  int size() const override { return n_; }
+  bool Residual(const Vec& u, Vec* f) override {
+    f->resize(n_);
+    const double inv_h2 = 1.0 / (h_ * h_);
+    for (int i = 0; i < n_; ++i) {
+      const double left = i > 0 ? u[i - 1] : 0.0;
+      const double right = i + 1 < n_ ? u[i + 1] : 0.0;
+      (*f)[i] = (2.0 * u[i] - left - right) * inv_h2 - lambda_ * std::exp(u[i]) - r_[i];
+    }
+    return true;
+  }
+  // Fills the values in place once the pattern exists, as a model with a fixed pattern would.
+  void Jacobian(const Vec& u, SpMat* j) override {
+    const double inv_h2 = 1.0 / (h_ * h_);
+    if (j->rows() != n_ || j->nonZeros() != 3 * n_ - 2) {
+      std::vector<Triplet> entries;
+      for (int i = 0; i < n_; ++i) {
+        if (i > 0) entries.emplace_back(i, i - 1, 1.0);
+        entries.emplace_back(i, i, 1.0);
+        if (i + 1 < n_) entries.emplace_back(i, i + 1, 1.0);
+      }
+      j->resize(n_, n_);
+      j->setFromTriplets(entries.begin(), entries.end());
+    }
+    for (int col = 0; col < n_; ++col) {
+      for (SpMat::InnerIterator it(*j, col); it; ++it) {
+        it.valueRef() = it.row() == col ? 2.0 * inv_h2 - lambda_ * std::exp(u[col]) : -inv_h2;
+      }
+    }
+  }
+  const Vec& solution() const { return solution_; }
+
+ private:
+  int n_;
+  double lambda_;
+  double h_ = 0.0;
+  Vec solution_, r_;
+};
+
+// F = (x1 + x2 - 1, 2 x1 + 2 x2 - 3): an inconsistent linear system with a singular Jacobian.
+class SingularSystem : public EquationSystem {
+ public:
+  int size() const override { return 2; }
+  bool Residual(const Vec& x, Vec* f) override {
+    f->resize(2);
+    (*f)[0] = x[0] + x[1] - 1.0;
+    (*f)[1] = 2.0 * x[0] + 2.0 * x[1] - 3.0;
+    return true;
+  }
+  void Jacobian(const Vec&, SpMat* j) override {
+    const std::vector<Triplet> entries = {{0, 0, 1.0}, {0, 1, 1.0}, {1, 0, 2.0}, {1, 1, 2.0}};
+    j->resize(2, 2);
+    j->setFromTriplets(entries.begin(), entries.end());
+  }
+};
+
+// F_i = log(x_i) - c_i: undefined for x_i <= 0, where full steps from x0 = 10 land.
+class LogSystem : public EquationSystem {
+ public:
+  int size() const override { return 3; }
+  bool Residual(const Vec& x, Vec* f) override {
+    if ((x.array() <= 0.0).any()) return false;
+    *f = x.array().log() - c_.array();
+    return true;
+  }
+  void Jacobian(const Vec& x, SpMat* j) override {
+    std::vector<Triplet> entries;
+    for (int i = 0; i < 3; ++i) entries.emplace_back(i, i, 1.0 / x[i]);
+    j->resize(3, 3);
+    j->setFromTriplets(entries.begin(), entries.end());
+  }
+  Vec Solution() const { return c_.array().exp(); }
+
+ private:
+  Vec c_{{0.0, 1.0, -1.0}};
+};
+
+// F cannot be evaluated anywhere.
+class UnevaluableSystem : public EquationSystem {
+ public:
+  int size() const override { return 2; }
+  bool Residual(const Vec&, Vec*) override { return false; }
+  void Jacobian(const Vec&, SpMat* j) override { *j = SpMat(2, 2); }
+};
+
+// Counts the calls the solver makes, to check the summary's counts.
+class CountingSystem : public EquationSystem {
+ public:
+  explicit CountingSystem(EquationSystem* inner) : inner_(inner) {}
+  int size() const override { return inner_->size(); }
+  bool Residual(const Vec& x, Vec* f) override {
+    ++residual_calls;
+    return inner_->Residual(x, f);
+  }
+  void Jacobian(const Vec& x, SpMat* j) override {
+    ++jacobian_calls;
+    inner_->Jacobian(x, j);
+  }
+  int residual_calls = 0;
+  int jacobian_calls = 0;
+
+ private:
+  EquationSystem* inner_;
+};
+
+// Records what the callback sees.
+struct History {
+  std::vector<int> iterations;
+  std::vector<double> residual_inf;
+  std::vector<double> merit;
+  std::vector<Vec> x;
+  IterationCallback Callback() {
+    return [this](const IterationInfo& info) {
+      iterations.push_back(info.iteration);
+      residual_inf.push_back(info.residual_inf);
+      merit.push_back(info.merit);
+      x.push_back(*info.x);
+      return true;
+    };
+  }
+};
+
+// The summary agrees with a fresh evaluation at the returned point and with the counted calls.
+void ExpectConsistentSummary(EquationSystem& system, const CountingSystem& counted, const Vec& x,
+                             const SolverSummary& summary) {
+  Vec f(system.size());
+  ASSERT_TRUE(system.Residual(x, &f));
+  EXPECT_EQ(summary.final_residual_inf, InfNorm(f));
+  EXPECT_EQ(summary.final_merit, 0.5 * f.squaredNorm());
+  EXPECT_EQ(summary.residual_evals, counted.residual_calls);
+  EXPECT_EQ(summary.jacobian_evals, counted.jacobian_calls);
+  EXPECT_GE(summary.residual_evals, summary.iterations + 1);
+}
+
+std::string Readable(std::string name) {
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return name;
+}
+
+std::string ParamName(const ::testing::TestParamInfo<std::string>& info) {
+  return Readable(info.param);
+}
+
+// ----------------------------------------------------------------------------------------------
+// Linear solvers.
+
+// Random nonsymmetric matrix: a dominant-ish diagonal plus random entries within a band, the
+// shape of a finite-element matrix rather than a random graph (whose LU fill is dense).
+SpMat RandomSparseMatrix(int n, int per_column, int band, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::uniform_int_distribution<int> offset(-band, band);
+  std::vector<Triplet> entries;
+  for (int j = 0; j < n; ++j) {
+    entries.emplace_back(j, j, 3.0 + value(rng));
+    for (int k = 0; k < per_column; ++k) {
+      const int i = j + offset(rng);
+      if (i >= 0 && i < n && i != j) entries.emplace_back(i, j, value(rng));
+    }
+  }
+  SpMat a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  return a;
+}
+
+class LinearSolverTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  std::unique_ptr<LinearSolver> solver_ = MakeLinearSolver(GetParam());
+};
+
+TEST_P(LinearSolverTest, NameRoundTrips) { EXPECT_EQ(solver_->name(), GetParam()); }
+
+TEST_P(LinearSolverTest, SolvesRandomNonsymmetricSystem) {
+  const int n = 3000;
+  const SpMat a = RandomSparseMatrix(n, 6, 60, 7);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Vec b(n);
+  for (int i = 0; i < n; ++i) b[i] = value(rng);
+  ASSERT_TRUE(solver_->Factorize(a)) << solver_->message();
+  Vec x;
+  ASSERT_TRUE(solver_->Solve(b, &x)) << solver_->message();
+  EXPECT_LE((a * x - b).norm() / b.norm(), 1e-10);
+  EXPECT_EQ(solver_->num_analyses(), 1);
+}
+
+TEST_P(LinearSolverTest, AnalysesPatternOnceAndAgainAfterAChange) {
+  const int n = 200;
+  const SpMat a = RandomSparseMatrix(n, 3, 10, 1);
+  Vec b = Vec::LinSpaced(n, -1.0, 1.0);
+  Vec x;
+  for (int k = 0; k < 4; ++k) {
+    const SpMat scaled = (1.0 + k) * a;
+    ASSERT_TRUE(solver_->Factorize(scaled)) << solver_->message();
+    ASSERT_TRUE(solver_->Solve(b, &x));
+    EXPECT_LE((scaled * x - b).norm() / b.norm(), 1e-12);
+  }
+  EXPECT_EQ(solver_->num_analyses(), 1);
+
+  // Same size and nnz count would not be enough: move one entry to another row.
+  SpMat moved = a;
+  std::vector<Triplet> entries;
+  for (int j = 0; j < n; ++j) {
+    for (SpMat::InnerIterator it(a, j); it; ++it) entries.emplace_back(it.row(), j, it.value());
+  }
+  entries.emplace_back(n - 1, 0, 0.5);  // a new entry far from the band
+  moved.setFromTriplets(entries.begin(), entries.end());
+  ASSERT_TRUE(solver_->Factorize(moved)) << solver_->message();
+  ASSERT_TRUE(solver_->Solve(b, &x));
+  EXPECT_LE((moved * x - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(solver_->num_analyses(), 2);
+  ASSERT_TRUE(solver_->Factorize(2.0 * moved));
+  EXPECT_EQ(solver_->num_analyses(), 2);
+  ASSERT_TRUE(solver_->Factorize(a));
+  ASSERT_TRUE(solver_->Solve(b, &x));
+  EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(solver_->num_analyses(), 3);
+}
+
+TEST_P(LinearSolverTest, SingularMatrixReturnsFalseWithMessage) {
+  // Rows 0 and 1 are dependent; the factorisation meets an exactly zero pivot.
+  const std::vector<Triplet> entries = {
+      {0, 0, 1.0}, {0, 1, 2.0}, {1, 0, 2.0}, {1, 1, 4.0}, {2, 2, 1.0}};
+  SpMat a(3, 3);
+  a.setFromTriplets(entries.begin(), entries.end());
+  bool ok = true;
+  EXPECT_NO_THROW(ok = solver_->Factorize(a));
+  EXPECT_FALSE(ok);
+  EXPECT_FALSE(solver_->message().empty());
+  Vec x;
+  EXPECT_FALSE(solver_->Solve(Vec::Ones(3), &x));
+
+  // A structurally empty column.
+  SpMat empty_column(3, 3);
+  empty_column.insert(0, 0) = 1.0;
+  empty_column.insert(1, 0) = 1.0;
+  empty_column.insert(2, 2) = 1.0;
+  empty_column.makeCompressed();
+  EXPECT_FALSE(solver_->Factorize(empty_column));
+  EXPECT_FALSE(solver_->message().empty());
+}
+
+TEST_P(LinearSolverTest, RecoversAfterASingularMatrixWithoutReanalysis) {
+  const std::vector<Triplet> singular = {
+      {0, 0, 1.0}, {0, 1, 2.0}, {1, 0, 2.0}, {1, 1, 4.0}, {2, 2, 1.0}};
+  std::vector<Triplet> regular = singular;
+  regular[3] = Triplet(1, 1, 5.0);
+  SpMat a(3, 3), b(3, 3);
+  a.setFromTriplets(singular.begin(), singular.end());
+  b.setFromTriplets(regular.begin(), regular.end());
+  EXPECT_FALSE(solver_->Factorize(a));
+  ASSERT_TRUE(solver_->Factorize(b)) << solver_->message();
+  Vec x;
+  ASSERT_TRUE(solver_->Solve(Vec::Ones(3), &x));
+  EXPECT_LE((b * x - Vec::Ones(3)).norm(), 1e-14);
+  EXPECT_EQ(solver_->num_analyses(), 1);
+}
+
+TEST_P(LinearSolverTest, NonFiniteEntriesAreRejected) {
+  SpMat a = RandomSparseMatrix(20, 2, 3, 5);
+  a.valuePtr()[7] = std::nan("");
+  EXPECT_FALSE(solver_->Factorize(a));
+  EXPECT_NE(solver_->message().find("non-finite"), std::string::npos) << solver_->message();
+  a.valuePtr()[7] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(solver_->Factorize(a));
+}
+
+TEST_P(LinearSolverTest, NonSquareMatrixThrows) {
+  SpMat a(3, 4);
+  a.insert(0, 0) = 1.0;
+  EXPECT_THROW(solver_->Factorize(a), std::invalid_argument);
+}
+
+TEST_P(LinearSolverTest, SolveWithoutFactorisationFails) {
+  Vec x;
+  EXPECT_FALSE(solver_->Solve(Vec::Ones(3), &x));
+  EXPECT_FALSE(solver_->message().empty());
+}
+
+TEST_P(LinearSolverTest, AcceptsUncompressedMatrixAndAliasedRightHandSide) {
+  SpMat a(3, 3);
+  a.insert(0, 0) = 2.0;
+  a.insert(1, 1) = 4.0;
+  a.insert(2, 2) = 8.0;
+  a.insert(0, 2) = 1.0;
+  ASSERT_FALSE(a.isCompressed());
+  ASSERT_TRUE(solver_->Factorize(a)) << solver_->message();
+  Vec x = Vec::Ones(3);
+  const Vec b = x;
+  ASSERT_TRUE(solver_->Solve(x, &x));
+  EXPECT_LE((a * x - b).norm(), 1e-14);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllLinearSolvers, LinearSolverTest,
+                         ::testing::ValuesIn(LinearSolverNames()), ParamName);
+
+TEST(LinearSolverFactoryTest, DefaultIsSparseLuAndUnknownNameListsValidOnes) {
+  ASSERT_FALSE(LinearSolverNames().empty());
+  EXPECT_EQ(LinearSolverNames().front(), "sparse-lu");
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+  EXPECT_EQ(LinearSolverNames().size(), 3u);
+#endif
+  try {
+    MakeLinearSolver("cholesky");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    for (const std::string& name : LinearSolverNames()) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Options and the factory.
+
+TEST(SolverOptionsTest, DefaultsAreValid) {
+  std::string why = "untouched";
+  EXPECT_TRUE(SolverOptions().IsValid(&why));
+  EXPECT_TRUE(SolverOptions().IsValid(nullptr));
+}
+
+TEST(SolverOptionsTest, EachInvalidFieldIsRejectedByName) {
+  struct Case {
+    std::string field;
+    std::function<void(SolverOptions*)> spoil;
+  };
+  const std::vector<Case> cases = {
+      {"residual_tol", [](SolverOptions* o) { o->residual_tol = 0.0; }},
+      {"residual_tol", [](SolverOptions* o) { o->residual_tol = std::nan(""); }},
+      {"max_iterations", [](SolverOptions* o) { o->max_iterations = 0; }},
+      {"step_tol", [](SolverOptions* o) { o->step_tol = -1.0; }},
+      {"armijo", [](SolverOptions* o) { o->armijo = 0.0; }},
+      {"armijo", [](SolverOptions* o) { o->armijo = 0.5; }},
+      {"max_backtracks", [](SolverOptions* o) { o->max_backtracks = 0; }},
+      {"backtrack_min", [](SolverOptions* o) { o->backtrack_min = 0.0; }},
+      {"backtrack_max", [](SolverOptions* o) { o->backtrack_max = 1.0; }},
+      {"backtrack_min", [](SolverOptions* o) { o->backtrack_min = 0.6; }},
+      {"initial_radius_factor", [](SolverOptions* o) { o->initial_radius_factor = 0.0; }},
+      {"accept_ratio", [](SolverOptions* o) { o->accept_ratio = 0.3; }},
+      {"accept_ratio", [](SolverOptions* o) { o->accept_ratio = -0.1; }},
+      {"max_updates", [](SolverOptions* o) { o->max_updates = 0; }},
+      {"linear_solver", [](SolverOptions* o) { o->linear_solver = "gauss"; }},
+  };
+  for (const Case& c : cases) {
+    SolverOptions options;
+    c.spoil(&options);
+    std::string why;
+    EXPECT_FALSE(options.IsValid(&why)) << c.field;
+    EXPECT_NE(why.find(c.field), std::string::npos) << "why: " << why;
+    try {
+      MakeEquationSolver("newton", options);
+      ADD_FAILURE() << "no exception for " << c.field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(c.field), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(EquationSolverFactoryTest, NamesAndUnknownNameListsValidOnes) {
+  EXPECT_EQ(EquationSolverNames(), (std::vector<std::string>{"newton", "dogleg", "quasi-newton"}));
+  for (const std::string& name : EquationSolverNames()) {
+    EXPECT_EQ(MakeEquationSolver(name, SolverOptions())->name(), name);
+  }
+  try {
+    MakeEquationSolver("levenberg", SolverOptions());
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    for (const std::string& name : EquationSolverNames()) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Equation solvers, the same problems for each.
+
+class EquationSolverTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  std::unique_ptr<EquationSolver> Make(const SolverOptions& options = {}) {
+    return MakeEquationSolver(GetParam(), options);
+  }
+  bool Is(const std::string& name) const { return GetParam() == name; }
+};
+
+TEST_P(EquationSolverTest, LinearSystem) {
+  LinearTestSystem system(50);
+  CountingSystem counted(&system);
+  Vec x = Vec::Zero(50);
+  History history;
+  const SolverSummary summary = Make()->Solve(counted, &x, history.Callback());
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_LE(InfNorm(x - system.solution()), 1e-8);
+  // The exact Newton step solves a linear system at once; quasi-Newton's first step is one.
+  if (!Is("dogleg")) {
+    EXPECT_EQ(summary.iterations, 1);
+  }
+  EXPECT_EQ(static_cast<int>(history.iterations.size()), summary.iterations);
+  ExpectConsistentSummary(system, counted, x, summary);
+}
+
+TEST_P(EquationSolverTest, Rosenbrock) {
+  RosenbrockSystem system;
+  CountingSystem counted(&system);
+  Vec x = RosenbrockSystem::Start();
+  History history;
+  const SolverSummary summary = Make()->Solve(counted, &x, history.Callback());
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_LE(InfNorm(x - RosenbrockSystem::Solution()), 1e-8);
+  EXPECT_LE(summary.final_residual_inf, SolverOptions().residual_tol);
+  EXPECT_DOUBLE_EQ(summary.initial_merit, 0.5 * (4.4 * 4.4 + 2.2 * 2.2));
+  ExpectConsistentSummary(system, counted, x, summary);
+  // One callback per iteration, numbered 1, 2, ...; the last one sees the returned point.
+  ASSERT_EQ(static_cast<int>(history.iterations.size()), summary.iterations);
+  for (int k = 0; k < summary.iterations; ++k) EXPECT_EQ(history.iterations[k], k + 1);
+  EXPECT_EQ(history.x.back(), x);
+  EXPECT_EQ(history.residual_inf.back(), summary.final_residual_inf);
+}
+
+TEST_P(EquationSolverTest, PowellBadlyScaled) {
+  PowellBadlyScaledSystem system;
+  CountingSystem counted(&system);
+  Vec x = PowellBadlyScaledSystem::Start();
+  SolverOptions options;
+  // ||J^{-1}|| ~ 1e4 here: the residual must be near rounding for x to be accurate to 1e-8.
+  options.residual_tol = 1e-13;
+  const SolverSummary summary = Make(options)->Solve(counted, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  const Vec solution = PowellBadlyScaledSystem::Solution();
+  EXPECT_NEAR(x[0] / solution[0], 1.0, 1e-8);
+  EXPECT_NEAR(x[1] / solution[1], 1.0, 1e-8);
+  ExpectConsistentSummary(system, counted, x, summary);
+}
+
+TEST_P(EquationSolverTest, Bratu1000) {
+  BratuSystem system(1000, 1.0);
+  CountingSystem counted(&system);
+  Vec x = Vec::Zero(1000);
+  SolverOptions options;
+  // F carries 1/h^2 ~ 1e6: its rounding floor is ~1e-10.
+  options.residual_tol = 1e-8;
+  const SolverSummary summary = Make(options)->Solve(counted, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_LE(InfNorm(x - system.solution()), 1e-8);
+  EXPECT_LE(summary.iterations, 30);
+  ExpectConsistentSummary(system, counted, x, summary);
+}
+
+TEST_P(EquationSolverTest, UndefinedTrialPointsAreRejected) {
+  LogSystem system;
+  CountingSystem counted(&system);
+  Vec x = Vec::Constant(3, 10.0);  // the full Newton step leaves the domain x > 0
+  const SolverSummary summary = Make()->Solve(counted, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_LE(InfNorm(x - system.Solution()), 1e-8);
+  ExpectConsistentSummary(system, counted, x, summary);
+}
+
+TEST_P(EquationSolverTest, CallbackCanStopTheSolve) {
+  RosenbrockSystem system;
+  Vec x = RosenbrockSystem::Start();
+  int calls = 0;
+  const SolverSummary summary = Make()->Solve(system, &x, [&](const IterationInfo& info) {
+    ++calls;
+    EXPECT_EQ(info.iteration, calls);
+    return false;
+  });
+  EXPECT_EQ(summary.status, Status::kStoppedByCaller) << summary.message;
+  EXPECT_EQ(summary.iterations, 1);
+  EXPECT_EQ(calls, 1);
+}
+
+TEST_P(EquationSolverTest, MaxIterationsGivesLimitReachedAtTheLastIterate) {
+  RosenbrockSystem system;
+  CountingSystem counted(&system);
+  Vec x = RosenbrockSystem::Start();
+  SolverOptions options;
+  options.max_iterations = 1;
+  History history;
+  const SolverSummary summary = Make(options)->Solve(counted, &x, history.Callback());
+  EXPECT_EQ(summary.status, Status::kLimitReached) << summary.message;
+  EXPECT_EQ(summary.iterations, 1);
+  ASSERT_EQ(history.x.size(), 1u);
+  EXPECT_EQ(history.x.back(), x);
+  EXPECT_LE(summary.final_merit, summary.initial_merit);
+  ExpectConsistentSummary(system, counted, x, summary);
+}
+
+TEST_P(EquationSolverTest, SingularSystemFailsWithMessage) {
+  SingularSystem system;
+  Vec x = Vec::Zero(2);
+  SolverSummary summary;
+  EXPECT_NO_THROW(summary = Make()->Solve(system, &x));
+  EXPECT_EQ(summary.status, Status::kFailed);
+  EXPECT_FALSE(summary.message.empty());
+  // Dogleg does not stop at a singular Jacobian: it takes Cauchy steps to the least-squares
+  // point and stops there (stagnation), naming the singular Jacobian.
+  const std::string expected =
+      Is("dogleg") ? "singular Jacobian" : "singular Jacobian at iteration 1";
+  EXPECT_NE(summary.message.find(expected), std::string::npos) << summary.message;
+  EXPECT_TRUE(x.allFinite());
+}
+
+TEST_P(EquationSolverTest, NonFiniteJacobianFails) {
+  class NanJacobian : public RosenbrockSystem {
+   public:
+    void Jacobian(const Vec& x, SpMat* j) override {
+      RosenbrockSystem::Jacobian(x, j);
+      j->valuePtr()[0] = std::nan("");
+    }
+  } system;
+  Vec x = RosenbrockSystem::Start();
+  SolverSummary summary;
+  EXPECT_NO_THROW(summary = Make()->Solve(system, &x));
+  EXPECT_EQ(summary.status, Status::kFailed);
+  EXPECT_NE(summary.message.find("non-finite Jacobian at iteration 1"), std::string::npos)
+      << summary.message;
+  EXPECT_EQ(x, RosenbrockSystem::Start());
+}
+
+TEST_P(EquationSolverTest, ResidualFailingAtTheStartFails) {
+  UnevaluableSystem system;
+  Vec x = Vec::Zero(2);
+  const SolverSummary summary = Make()->Solve(system, &x);
+  EXPECT_EQ(summary.status, Status::kFailed);
+  EXPECT_NE(summary.message.find("initial point"), std::string::npos) << summary.message;
+  EXPECT_EQ(summary.residual_evals, 1);
+  EXPECT_EQ(summary.jacobian_evals, 0);
+  EXPECT_EQ(summary.iterations, 0);
+}
+
+TEST_P(EquationSolverTest, ConvergedInitialPointTakesNoIteration) {
+  RosenbrockSystem system;
+  Vec x = RosenbrockSystem::Solution();
+  const SolverSummary summary = Make()->Solve(system, &x);
+  EXPECT_EQ(summary.status, Status::kConverged);
+  EXPECT_EQ(summary.iterations, 0);
+  EXPECT_EQ(summary.jacobian_evals, 0);
+  EXPECT_EQ(summary.final_merit, 0.0);
+}
+
+TEST_P(EquationSolverTest, WrongSizeInitialPointThrows) {
+  RosenbrockSystem system;
+  Vec x = Vec::Zero(3);
+  EXPECT_THROW(Make()->Solve(system, &x), std::invalid_argument);
+  EXPECT_THROW(Make()->Solve(system, nullptr), std::invalid_argument);
+}
+
+TEST_P(EquationSolverTest, ReusableAcrossSolvesAndSizes) {
+  SolverOptions options;
+  options.residual_tol = 1e-8;
+  auto solver = Make(options);
+  BratuSystem bratu(300, 1.0);
+  Vec first = Vec::Zero(300);
+  const SolverSummary a = solver->Solve(bratu, &first);
+  ASSERT_EQ(a.status, Status::kConverged) << a.message;
+
+  RosenbrockSystem rosenbrock;  // another size and pattern in between
+  Vec y = RosenbrockSystem::Start();
+  ASSERT_EQ(solver->Solve(rosenbrock, &y).status, Status::kConverged);
+
+  Vec second = Vec::Zero(300);
+  const SolverSummary b = solver->Solve(bratu, &second);
+  ASSERT_EQ(b.status, Status::kConverged) << b.message;
+  EXPECT_EQ(first, second);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.residual_evals, b.residual_evals);
+  EXPECT_EQ(a.jacobian_evals, b.jacobian_evals);
+  EXPECT_EQ(a.linear_solves, b.linear_solves);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllEquationSolvers, EquationSolverTest,
+                         ::testing::ValuesIn(EquationSolverNames()), ParamName);
+
+// Every equation solver with every linear solver on one nonlinear problem.
+class EquationSolverWithLinearSolverTest
+    : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(EquationSolverWithLinearSolverTest, Bratu) {
+  SolverOptions options;
+  options.linear_solver = std::get<1>(GetParam());
+  options.residual_tol = 1e-8;
+  BratuSystem system(500, 2.0);
+  Vec x = Vec::Zero(500);
+  const SolverSummary summary =
+      MakeEquationSolver(std::get<0>(GetParam()), options)->Solve(system, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_LE(InfNorm(x - system.solution()), 1e-8);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllPairs, EquationSolverWithLinearSolverTest,
+    ::testing::Combine(::testing::ValuesIn(EquationSolverNames()),
+                       ::testing::ValuesIn(LinearSolverNames())),
+    [](const ::testing::TestParamInfo<std::tuple<std::string, std::string>>& info) {
+      return Readable(std::get<0>(info.param) + "_with_" + std::get<1>(info.param));
+    });
+
+// ----------------------------------------------------------------------------------------------
+// Method-specific properties.
+
+TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
+  RosenbrockSystem rosenbrock;
+  Vec x = RosenbrockSystem::Start();
+  const SolverSummary summary = MakeEquationSolver("newton", {})->Solve(rosenbrock, &x);
+  ASSERT_EQ(summary.status, Status::kConverged);
+  EXPECT_EQ(summary.jacobian_evals, summary.iterations);
+  EXPECT_EQ(summary.linear_solves, summary.iterations);
+
+  BratuSystem bratu(1000, 1.0);
+  Vec u = Vec::Zero(1000);
+  SolverOptions options;
+  options.residual_tol = 1e-8;
+  const SolverSummary b = MakeEquationSolver("newton", options)->Solve(bratu, &u);
+  ASSERT_EQ(b.status, Status::kConverged);
+  EXPECT_EQ(b.jacobian_evals, b.iterations);
+  EXPECT_EQ(b.linear_solves, b.iterations);
+  // Full steps throughout on this mildly nonlinear problem.
+  EXPECT_EQ(b.residual_evals, b.iterations + 1);
+}
+
+TEST(NewtonSolverTest, ConvergesQuadratically) {
+  BratuSystem system(1000, 3.0);  // closer to the turning point (3.51): more nonlinear
+  Vec x = Vec::Zero(1000);
+  SolverOptions options;
+  options.residual_tol = 1e-9;
+  History history;
+  const SolverSummary summary =
+      MakeEquationSolver("newton", options)->Solve(system, &x, history.Callback());
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  std::vector<double> errors = {InfNorm(system.solution())};  // e_0, from x0 = 0
+  for (const Vec& xk : history.x) errors.push_back(InfNorm(xk - system.solution()));
+  int checked = 0;
+  for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
+    // Only where the error is in the asymptotic range and above the rounding floor.
+    if (errors[k] > 0.1 || errors[k + 1] < 1e-11) continue;
+    EXPECT_LE(errors[k + 1] / (errors[k] * errors[k]), 10.0)
+        << "k=" << k << " e_k=" << errors[k] << " e_k+1=" << errors[k + 1];
+    ++checked;
+  }
+  EXPECT_GE(checked, 2);
+}
+
+TEST(DoglegSolverTest, OneFactorisationPerAcceptedStep) {
+  PowellBadlyScaledSystem system;
+  Vec x = PowellBadlyScaledSystem::Start();
+  History history;
+  const SolverSummary summary =
+      MakeEquationSolver("dogleg", {})->Solve(system, &x, history.Callback());
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_EQ(summary.jacobian_evals, summary.linear_solves);
+  // Accepted trials are those that lowered the merit; each but the last is followed by one
+  // Jacobian evaluation, and the first Jacobian is at x0.
+  int accepted = 0;
+  double previous = summary.initial_merit;
+  for (double m : history.merit) {
+    if (m != previous) ++accepted;
+    previous = m;
+  }
+  EXPECT_EQ(summary.jacobian_evals, accepted);
+  EXPECT_LE(summary.jacobian_evals, summary.iterations);
+  EXPECT_EQ(summary.residual_evals, summary.iterations + 1);
+}
+
+TEST(QuasiNewtonSolverTest, UsesFewerJacobiansThanIterations) {
+  BratuSystem system(1000, 1.0);
+  Vec x = Vec::Zero(1000);
+  SolverOptions options;
+  options.residual_tol = 1e-8;
+  const SolverSummary summary = MakeEquationSolver("quasi-newton", options)->Solve(system, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  EXPECT_EQ(summary.jacobian_evals, summary.linear_solves);
+  EXPECT_LT(summary.jacobian_evals, summary.iterations);
+}
+
+TEST(QuasiNewtonSolverTest, RefreshesAfterMaxUpdates) {
+  BratuSystem system(200, 3.0);
+  Vec x = Vec::Zero(200);
+  SolverOptions options;
+  options.residual_tol = 1e-8;
+  options.max_updates = 1;
+  const SolverSummary summary = MakeEquationSolver("quasi-newton", options)->Solve(system, &x);
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.message;
+  // At most one update between two factorisations: two iterations per Jacobian at most.
+  EXPECT_GE(2 * summary.jacobian_evals, summary.iterations);
+  EXPECT_LE(InfNorm(x - system.solution()), 1e-8);
+}
+
+}  // namespace
+}  // namespace cb

@@ -1,0 +1,51 @@
+// ScatterPattern: slots, repeated fills, and a matrix carrying another pattern.
+#include "core/sparse.h"
+
+#include <gtest/gtest.h>
+
+namespace cb {
+namespace {
+
+TEST(SparseTest, ScatterSumsDuplicatesIntoTheirSlots) {
+  const ScatterPattern p(2, 2, {{0, 0}, {1, 1}, {0, 0}, {1, 0}});
+  SpMat m;
+  for (int pass = 0; pass < 2; ++pass) {
+    p.Reset(&m);
+    const double v[] = {1.0, 2.0, 3.0, 4.0};
+    for (std::size_t k = 0; k < 4; ++k) m.valuePtr()[p.slot(k)] += v[k];
+    EXPECT_EQ(m.coeff(0, 0), 4.0);
+    EXPECT_EQ(m.coeff(1, 1), 2.0);
+    EXPECT_EQ(m.coeff(1, 0), 4.0);
+    EXPECT_EQ(m.nonZeros(), 3);
+  }
+}
+
+TEST(SparseTest, ResetReplacesAnotherPatternWithTheSameNonZeroCount) {
+  const ScatterPattern a(2, 2, {{0, 0}, {1, 1}});
+  const ScatterPattern b(2, 2, {{0, 1}, {1, 0}});
+  SpMat m;
+  a.Reset(&m);
+  b.Reset(&m);
+  m.valuePtr()[b.slot(0)] = 5.0;
+  EXPECT_EQ(m.coeff(0, 1), 5.0);
+  EXPECT_EQ(m.coeff(0, 0), 0.0);
+}
+
+TEST(SparseTest, BlockEntriesTransposeAndScatter) {
+  SpMat block(2, 3);
+  block.insert(0, 2) = 7.0;
+  block.insert(1, 0) = 3.0;
+  block.makeCompressed();
+  std::vector<ScatterPattern::Entry> e;
+  AppendBlockEntries(block, 1, 0, true, &e);  // block^T at (1, 0) of a 4 x 2 matrix
+  const ScatterPattern p(4, 2, e);
+  SpMat m;
+  p.Reset(&m);
+  ScatterBlock(block, -2.0, p.slots(), 0, &m);
+  EXPECT_EQ(m.coeff(3, 0), -14.0);
+  EXPECT_EQ(m.coeff(1, 1), -6.0);
+  EXPECT_THROW(ScatterPattern(2, 2, {{2, 0}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cb
