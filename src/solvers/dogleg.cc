@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "solvers/newton.h"
+#include "solvers/solver_common.h"
 
 namespace cb {
 
@@ -28,15 +28,8 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
   j_step_.resize(n);
 
   SolverSummary summary;
-  if (!internal::EvaluateResidual(system, *x, &f_, &summary)) {
-    summary.status = Status::kFailed;
-    summary.message = "residual cannot be evaluated (or is not finite) at the initial point";
-    return summary;
-  }
-  double merit = 0.5 * f_.squaredNorm();
-  summary.initial_merit = merit;
-  if (InfNorm(f_) <= options_.residual_tol) {
-    Finish(Status::kConverged, "the initial point meets residual_tol", merit, f_, &summary);
+  double merit = 0.0;
+  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary)) {
     return summary;
   }
 
@@ -141,26 +134,9 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
       merit = trial_merit;
       need_jacobian = true;
     }
-    summary.iterations = k;
-
-    const double residual_inf = InfNorm(f_);
-    bool keep_going = true;
-    if (callback) {
-      IterationInfo info;
-      info.iteration = k;
-      info.merit = merit;
-      info.residual_inf = residual_inf;
-      info.step_length = step_norm;
-      info.x = x;
-      keep_going = callback(info);
-    }
-    if (accepted && residual_inf <= options_.residual_tol) {
-      Finish(Status::kConverged, "||F||_inf <= residual_tol", merit, f_, &summary);
-      return summary;
-    }
-    if (!keep_going) {
-      Finish(Status::kStoppedByCaller, "the callback stopped the solve" + at(), merit, f_,
-             &summary);
+    // (A rejected dogleg trial leaves F unchanged, so it cannot meet the tolerance here.)
+    if (internal::EndIteration(k, merit, f_, step_norm, x, options_.residual_tol, callback,
+                               &summary)) {
       return summary;
     }
     const bool collapsed = !accepted && radius <= options_.step_tol * (1.0 + InfNorm(*x));

@@ -6,100 +6,9 @@
 #include <string>
 #include <utility>
 
+#include "solvers/solver_common.h"
+
 namespace cb {
-namespace internal {
-
-double InfNorm(const Vec& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
-
-bool EvaluateResidual(EquationSystem& system, const Vec& x, Vec* f, SolverSummary* summary) {
-  ++summary->residual_evals;
-  if (!system.Residual(x, f)) return false;
-  if (f->size() != x.size()) {
-    throw std::invalid_argument("EquationSystem::Residual returned a vector of size " +
-                                std::to_string(f->size()) + " for a system of size " +
-                                std::to_string(x.size()));
-  }
-  return f->allFinite();
-}
-
-bool EvaluateJacobian(EquationSystem& system, const Vec& x, SpMat* jacobian,
-                      SolverSummary* summary) {
-  ++summary->jacobian_evals;
-  system.Jacobian(x, jacobian);
-  if (jacobian->rows() != x.size() || jacobian->cols() != x.size()) {
-    throw std::invalid_argument("EquationSystem::Jacobian returned a " +
-                                std::to_string(jacobian->rows()) + " x " +
-                                std::to_string(jacobian->cols()) + " matrix for a system of size " +
-                                std::to_string(x.size()));
-  }
-  const double* values = jacobian->valuePtr();
-  return std::all_of(values, values + jacobian->nonZeros(),
-                     [](double v) { return std::isfinite(v); });
-}
-
-std::string At(int iteration) { return " at iteration " + std::to_string(iteration); }
-
-bool StepTooSmall(const Vec& dx, const Vec& x, double step_tol) {
-  return InfNorm(dx) <= step_tol * (1.0 + InfNorm(x));
-}
-
-void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::string& solver) {
-  if (x == nullptr) throw std::invalid_argument(solver + ": Solve needs an initial point");
-  if (x->size() != system.size()) {
-    throw std::invalid_argument(solver + ": initial point has size " + std::to_string(x->size()) +
-                                ", the system has size " + std::to_string(system.size()));
-  }
-}
-
-LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
-                                        DecreaseTest test, const Vec& x, double merit,
-                                        const Vec& dx, Vec* x_trial, Vec* f_trial,
-                                        double* merit_trial, SolverSummary* summary) {
-  LineSearchResult result;
-  const double dx_inf = InfNorm(dx);
-  const double too_short = options.step_tol * (1.0 + InfNorm(x));
-  const double slope = -2.0 * merit;  // m'(x; dx) for the exact Newton direction
-  double a = 1.0;
-  for (int trial = 1; trial <= options.max_backtracks; ++trial) {
-    if (a * dx_inf <= too_short) {
-      result.too_short = true;
-      return result;
-    }
-    result.trials = trial;
-    x_trial->noalias() = x + a * dx;
-    const bool evaluated = EvaluateResidual(system, *x_trial, f_trial, summary);
-    if (evaluated) {
-      const double m = 0.5 * f_trial->squaredNorm();
-      const double bound = test == DecreaseTest::kArmijoNewtonSlope
-                               ? merit + options.armijo * a * slope
-                               : merit * (1.0 - options.armijo * a) * (1.0 - options.armijo * a);
-      if (m <= bound) {
-        result.accepted = true;
-        result.step = a;
-        *merit_trial = m;
-        return result;
-      }
-      // Minimiser of q(t) = m(0) + slope t + c t^2 through m(a). A failed sufficient-decrease
-      // test implies c > 0 for either test; the guard covers rounding.
-      const double c = (m - merit - slope * a) / (a * a);
-      const double t = c > 0.0 ? -slope / (2.0 * c) : options.backtrack_max * a;
-      a = std::clamp(t, options.backtrack_min * a, options.backtrack_max * a);
-    } else {
-      a *= std::min(0.5, options.backtrack_max);
-    }
-  }
-  return result;
-}
-
-void Finish(Status status, std::string message, double merit, const Vec& f,
-            SolverSummary* summary) {
-  summary->status = status;
-  summary->message = std::move(message);
-  summary->final_merit = merit;
-  summary->final_residual_inf = InfNorm(f);
-}
-
-}  // namespace internal
 
 NewtonSolver::NewtonSolver(const SolverOptions& options)
     : options_(options), linear_solver_(MakeLinearSolver(options.linear_solver)) {}
@@ -115,15 +24,8 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
   f_trial_.resize(n);
 
   SolverSummary summary;
-  if (!internal::EvaluateResidual(system, *x, &f_, &summary)) {
-    summary.status = Status::kFailed;
-    summary.message = "residual cannot be evaluated (or is not finite) at the initial point";
-    return summary;
-  }
-  double merit = 0.5 * f_.squaredNorm();
-  summary.initial_merit = merit;
-  if (internal::InfNorm(f_) <= options_.residual_tol) {
-    Finish(Status::kConverged, "the initial point meets residual_tol", merit, f_, &summary);
+  double merit = 0.0;
+  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary)) {
     return summary;
   }
 
@@ -162,26 +64,8 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     *x = x_trial_;
     f_.swap(f_trial_);
     merit = trial_merit;
-    summary.iterations = k;
-
-    const double residual_inf = internal::InfNorm(f_);
-    bool keep_going = true;
-    if (callback) {
-      IterationInfo info;
-      info.iteration = k;
-      info.merit = merit;
-      info.residual_inf = residual_inf;
-      info.step_length = search.step;
-      info.x = x;
-      keep_going = callback(info);
-    }
-    if (residual_inf <= options_.residual_tol) {
-      Finish(Status::kConverged, "||F||_inf <= residual_tol", merit, f_, &summary);
-      return summary;
-    }
-    if (!keep_going) {
-      Finish(Status::kStoppedByCaller, "the callback stopped the solve" + at(), merit, f_,
-             &summary);
+    if (internal::EndIteration(k, merit, f_, search.step, x, options_.residual_tol, callback,
+                               &summary)) {
       return summary;
     }
   }

@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "solvers/newton.h"
+#include "solvers/solver_common.h"
 
 namespace cb {
 
@@ -38,15 +38,8 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
   num_updates_ = 0;
 
   SolverSummary summary;
-  if (!internal::EvaluateResidual(system, *x, &f_, &summary)) {
-    summary.status = Status::kFailed;
-    summary.message = "residual cannot be evaluated (or is not finite) at the initial point";
-    return summary;
-  }
-  double merit = 0.5 * f_.squaredNorm();
-  summary.initial_merit = merit;
-  if (internal::InfNorm(f_) <= options_.residual_tol) {
-    Finish(Status::kConverged, "the initial point meets residual_tol", merit, f_, &summary);
+  double merit = 0.0;
+  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary)) {
     return summary;
   }
 
@@ -95,26 +88,8 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
     *x = x_trial_;
     f_.swap(f_trial_);
     merit = trial_merit;
-    summary.iterations = k;
-
-    const double residual_inf = internal::InfNorm(f_);
-    bool keep_going = true;
-    if (callback) {
-      IterationInfo info;
-      info.iteration = k;
-      info.merit = merit;
-      info.residual_inf = residual_inf;
-      info.step_length = search.step;
-      info.x = x;
-      keep_going = callback(info);
-    }
-    if (residual_inf <= options_.residual_tol) {
-      Finish(Status::kConverged, "||F||_inf <= residual_tol", merit, f_, &summary);
-      return summary;
-    }
-    if (!keep_going) {
-      Finish(Status::kStoppedByCaller, "the callback stopped the solve" + at(), merit, f_,
-             &summary);
+    if (internal::EndIteration(k, merit, f_, search.step, x, options_.residual_tol, callback,
+                               &summary)) {
       return summary;
     }
 

@@ -1,0 +1,85 @@
+// The pieces the equation solvers share: counted residual and Jacobian evaluation, the
+// backtracking line search, the stagnation test, and the bookkeeping at the start of a solve and
+// at the end of each iteration. Internal to src/solvers: other code reaches the solvers through
+// MakeEquationSolver.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+#include "solvers/equation_solver.h"
+#include "solvers/equation_system.h"
+
+namespace cb {
+namespace internal {
+
+// ||v||_inf, zero for an empty vector (Eigen's maxCoeff asserts on one).
+double InfNorm(const Vec& v);
+
+// Evaluates F(x) into *f and counts it in summary->residual_evals. Returns false when the
+// system says F cannot be evaluated or when F has non-finite entries: either way the point is
+// unusable. Throws std::invalid_argument when the system returns a vector of the wrong size.
+bool EvaluateResidual(EquationSystem& system, const Vec& x, Vec* f, SolverSummary* summary);
+
+// Evaluates J(x) into *jacobian and counts it. Returns false when J has a non-finite entry;
+// throws std::invalid_argument when the system returns a matrix that is not n x n.
+bool EvaluateJacobian(EquationSystem& system, const Vec& x, SpMat* jacobian,
+                      SolverSummary* summary);
+
+// " at iteration k", for messages (built only when a solve ends).
+std::string At(int iteration);
+
+// True when a step dx taken from x is too small to change x: ||dx||_inf <= step_tol (1 +
+// ||x||_inf).
+bool StepTooSmall(const Vec& dx, const Vec& x, double step_tol);
+
+// Throws std::invalid_argument unless x is non-null and has the system's size.
+void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::string& solver);
+
+// Sufficient-decrease tests of the backtracking line search at a trial factor a.
+enum class DecreaseTest {
+  // Armijo on m with the Newton slope m'(x; dx) = -||F||^2 (exact for dx = -J^{-1} F):
+  //   m(x + a dx) <= (1 - 2 armijo a) m(x).
+  kArmijoNewtonSlope,
+  // Derivative-free decrease of the norm (Griewank; Li and Fukushima), for directions that
+  // are not known to be descent directions (quasi-Newton):
+  //   ||F(x + a dx)|| <= (1 - armijo a) ||F(x)||.
+  kNormDecrease,
+};
+
+struct LineSearchResult {
+  bool accepted = false;
+  double step = 0.0;  // the accepted factor a
+  int trials = 0;
+  bool too_short = false;  // gave up because a dx no longer changes x (stagnation)
+};
+
+// Backtracking from a = 1 along dx. A trial whose residual cannot be evaluated is a failed
+// trial; the factor is then halved (capped by backtrack_max), since there is no value to
+// interpolate. Otherwise the next factor minimises the quadratic through m(0), the Newton slope
+// -2 m(0) and m(a), clipped to [backtrack_min, backtrack_max] * a, so a wrong slope (a
+// quasi-Newton direction) cannot make the search stall or jump. On acceptance *x_trial,
+// *f_trial, *merit_trial hold the accepted point.
+LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
+                                        DecreaseTest test, const Vec& x, double merit,
+                                        const Vec& dx, Vec* x_trial, Vec* f_trial,
+                                        double* merit_trial, SolverSummary* summary);
+
+// Fills the summary's final fields and status.
+void Finish(Status status, std::string message, double merit, const Vec& f, SolverSummary* summary);
+
+// The start of every solve: evaluates F at the initial point into *f and *merit, and records the
+// initial merit. Returns true when the solve is already over: F cannot be evaluated there
+// (kFailed) or it meets residual_tol (kConverged).
+bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
+                SolverSummary* summary);
+
+// The end of every accepted iteration k: records it, reports it to the callback, and returns
+// true when the solve is over, because ||F||_inf <= residual_tol (kConverged, which wins over a
+// callback's stop in the same iteration) or because the callback asked to stop.
+bool EndIteration(int k, double merit, const Vec& f, double step_length, const Vec* x,
+                  double residual_tol, const IterationCallback& callback, SolverSummary* summary);
+
+}  // namespace internal
+
+}  // namespace cb
