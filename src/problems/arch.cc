@@ -154,22 +154,17 @@ Problem BuildArch(const Parameters& p) {
   force << p.Real("load"), 0.0;
   AddNodalForce(body->dofs(), node_a, force, &load);
 
-  Problem problem;
+  Problem problem = MakeBodyProblem(body, obstacles, pairs, load, p);
   const bool flat = p.Choice("lower_obstacle") == "flat";
   problem.description = std::string(flat ? "P2" : "P3") + " two-layer arch truss, " +
                         std::to_string(xy.rows()) + " nodes, " + std::to_string(members.size()) +
                         " members";
   problem.units = "kN, m";
-  auto model = std::make_shared<BodyContactModel>(body, obstacles, pairs, load);
-  problem.model = model;
-  problem.body = model;
-  problem.scales = ScalesFrom(p);
   problem.loading = LoadingKind::kArcLength;
   problem.arc_length = p.Real("arc_length");
   problem.steps = p.Integer("steps");
   problem.control_dof = body->dofs().dof(node_a, 0);
   problem.control_label = "x-displacement of node (a) [m]";
-  problem.parameters = p;
   return problem;
 }
 

@@ -65,21 +65,15 @@ Problem BuildBlock(const Parameters& p) {
   traction << p.Real("traction_x"), p.Real("traction_y");
   for (int j = 0; j < n; ++j) body->AddEdgeTraction(id(n, j), id(n, j + 1), traction, &load);
 
-  Problem problem;
-  problem.name = "block";
+  Problem problem = MakeBodyProblem(body, obstacles, pairs, load, p);
   problem.description =
       "P1 plane-stress block, " + std::to_string(n) + " x " + std::to_string(n) + " Q4, fixed load";
   problem.units = "N, m";
-  auto model = std::make_shared<BodyContactModel>(body, obstacles, pairs, load);
-  problem.model = model;
-  problem.body = model;
-  problem.scales = ScalesFrom(p);
   problem.loading = LoadingKind::kFixedLoad;
   problem.load = p.Real("load");
   problem.steps = 1;
   problem.control_dof = body->dofs().dof(id(n, n), 0);
   problem.control_label = "x-displacement of the top-right corner [m]";
-  problem.parameters = p;
   return problem;
 }
 

@@ -51,6 +51,12 @@ std::vector<std::string> ProblemNames();
 Problem MakeProblem(const std::string& name,
                     const std::map<std::string, std::string>& settings = {});
 
+// The fields every problem of a body against obstacles shares: the model (also as `body`),
+// the contact scales read from `parameters`, and the parameters themselves.
+Problem MakeBodyProblem(std::shared_ptr<const ElasticBody> body,
+                        std::vector<std::shared_ptr<const Obstacle>> obstacles,
+                        std::vector<ContactPair> pairs, Vec load, const Parameters& parameters);
+
 // Parameters every problem has: the contact scales of METHOD.md section 2.
 void DeclareScaleParameters(double length, double force, Parameters* parameters);
 ContactScales ScalesFrom(const Parameters& parameters);

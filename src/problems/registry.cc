@@ -18,6 +18,19 @@ ContactScales ScalesFrom(const Parameters& parameters) {
   return {parameters.Real("length_scale"), parameters.Real("force_scale")};
 }
 
+Problem MakeBodyProblem(std::shared_ptr<const ElasticBody> body,
+                        std::vector<std::shared_ptr<const Obstacle>> obstacles,
+                        std::vector<ContactPair> pairs, Vec load, const Parameters& parameters) {
+  Problem problem;
+  auto model = std::make_shared<BodyContactModel>(std::move(body), std::move(obstacles),
+                                                  std::move(pairs), std::move(load));
+  problem.model = model;
+  problem.body = model;
+  problem.scales = ScalesFrom(parameters);
+  problem.parameters = parameters;
+  return problem;
+}
+
 namespace {
 
 template <Parameters (*Defaults)(), Problem (*Build)(const Parameters&)>

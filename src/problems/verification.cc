@@ -44,20 +44,14 @@ Problem BuildBarWall(const Parameters& p) {
   force << p.Real("load"), 0.0;
   AddNodalForce(body->dofs(), 1, force, &load);
 
-  Problem problem;
+  Problem problem = MakeBodyProblem(body, obstacles, {{1, 0}}, load, p);
   problem.description = "bar pushed against a wall";
   problem.units = "consistent units";
-  auto model =
-      std::make_shared<BodyContactModel>(body, obstacles, std::vector<ContactPair>{{1, 0}}, load);
-  problem.model = model;
-  problem.body = model;
-  problem.scales = ScalesFrom(p);
   problem.loading = LoadingKind::kArcLength;
   problem.arc_length = p.Real("arc_length");
   problem.steps = p.Integer("steps");
   problem.control_dof = body->dofs().dof(1, 0);
   problem.control_label = "displacement of the free end";
-  problem.parameters = p;
   return problem;
 }
 
@@ -114,19 +108,14 @@ Problem BuildTwoBar(const Parameters& p) {
   force << 0.0, -p.Real("load");
   AddNodalForce(body->dofs(), 1, force, &load);
 
-  Problem problem;
+  Problem problem = MakeBodyProblem(body, obstacles, pairs, load, p);
   problem.description = "von Mises two-bar truss";
   problem.units = "consistent units";
-  auto model = std::make_shared<BodyContactModel>(body, obstacles, pairs, load);
-  problem.model = model;
-  problem.body = model;
-  problem.scales = ScalesFrom(p);
   problem.loading = LoadingKind::kArcLength;
   problem.arc_length = p.Real("arc_length");
   problem.steps = p.Integer("steps");
   problem.control_dof = body->dofs().dof(1, 1);
   problem.control_label = "vertical displacement of the apex";
-  problem.parameters = p;
   return problem;
 }
 
