@@ -10,6 +10,7 @@
 
 #include "core/types.h"
 #include "solvers/equation_system.h"
+#include "solvers/linear_solver.h"
 
 namespace cb {
 
@@ -43,7 +44,7 @@ struct SolverOptions {
   int max_updates = 20;
 
   // Sparse direct solver, one of LinearSolverNames().
-  std::string linear_solver = "sparse-lu";
+  std::string linear_solver = DefaultLinearSolverName();
 
   // Returns true when every field is in range; otherwise false with the reason in *why.
   bool IsValid(std::string* why) const;

@@ -1,6 +1,7 @@
 // Sparse direct solvers for the (non-symmetric) Newton systems J dx = -F. The symbolic analysis
 // (ordering) is done on the first factorisation and redone only when the pattern changes, so a
-// path of many steps with one pattern analyses it once.
+// path of many steps with one pattern analyses it once. "klu" also reuses the pivot order of its
+// last full factorisation while that stays numerically sound (see num_full_factorizations).
 #pragma once
 
 #include <memory>
@@ -22,11 +23,18 @@ class LinearSolver {
   virtual bool Solve(const Vec& b, Vec* x) = 0;
   // How many symbolic analyses were done (for tests and benchmarks).
   virtual int num_analyses() const = 0;
+  // How many numerical factorisations chose their pivot order afresh, including ones that found
+  // the matrix singular (for tests and benchmarks). Every factorisation does for "sparse-lu" and
+  // "umfpack"; "klu" does so only after a new analysis or when reusing the previous pivot order
+  // would be inaccurate, and otherwise refactorises more cheaply with the old order.
+  virtual int num_full_factorizations() const = 0;
   virtual const std::string& message() const = 0;
 };
 
 // Names accepted by MakeLinearSolver, the default first.
 std::vector<std::string> LinearSolverNames();
+// The default: "klu" when SuiteSparse was built, else "sparse-lu".
+std::string DefaultLinearSolverName();
 // Throws std::invalid_argument listing the valid names for an unknown one.
 std::unique_ptr<LinearSolver> MakeLinearSolver(const std::string& name);
 
