@@ -617,6 +617,24 @@ TEST(ModelTest, BodyContactGapJacobianAndCurvatureMatchFiniteDifferences3D) {
   CheckContactDerivatives(MakeTrussContact3D(), 22);
 }
 
+TEST(ModelTest, GeneralisedReactionIsGapJacobianTransposeTimesR) {
+  for (const BodyContactModel& model : {MakeTrussContact2D(), MakeTrussContact3D()}) {
+    std::mt19937 rng(29);
+    const Vec u = RandomVec(model.num_dofs(), 0.2, &rng);
+    const Vec r = RandomVec(model.num_pairs(), 1.0, &rng);
+    SpMat jac;
+    model.GapJacobian(u, &jac);
+    Vec reaction;
+    model.GeneralisedReaction(u, r, &reaction);
+    const Vec expected = jac.transpose() * r;
+    EXPECT_LT((reaction - expected).lpNorm<Eigen::Infinity>(), 1e-14);
+    // The interface's default (through the assembled Jacobian) agrees.
+    Vec by_default;
+    model.ContactModel::GeneralisedReaction(u, r, &by_default);
+    EXPECT_LT((by_default - expected).lpNorm<Eigen::Infinity>(), 1e-14);
+  }
+}
+
 TEST(ModelTest, BodyContactPatternsIgnoreUAndR) {
   const BodyContactModel model = MakeTrussContact2D();
   std::mt19937 rng(23);

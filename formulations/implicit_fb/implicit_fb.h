@@ -112,7 +112,7 @@ class ImplicitFbSystem final : public EquationSystem {
   ImplicitFbLayout layout_;
   std::shared_ptr<PatternCache> cache_;
   // Work storage reused across evaluations.
-  Vec u_, internal_, phi_;
+  Vec u_, internal_, phi_, reaction_;
   SpMat stiffness_, curvature_, gap_jacobian_;
 };
 

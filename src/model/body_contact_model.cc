@@ -67,10 +67,13 @@ BodyContactModel::BodyContactModel(std::shared_ptr<const ElasticBody> body,
   jacobian_entries.reserve(pairs_.size() * dim);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     const ContactPair& pair = pairs_[p];
+    pair_reference_.push_back(body_->reference(pair.node));
+    std::array<int, 3> dofs = {-1, -1, -1};
     for (int c = 0; c < dim; ++c) {
-      const int dof = map.dof(pair.node, c);
-      if (dof >= 0) jacobian_entries.emplace_back(static_cast<int>(p), dof);
+      dofs[c] = map.dof(pair.node, c);
+      if (dofs[c] >= 0) jacobian_entries.emplace_back(static_cast<int>(p), dofs[c]);
     }
+    pair_dofs_.push_back(dofs);
     if (!obstacles_[pair.obstacle]->is_curved()) continue;
     for (int b = 0; b < dim; ++b) {
       const int col = map.dof(pair.node, b);
@@ -93,12 +96,33 @@ bool BodyContactModel::is_linear() const {
   return true;
 }
 
+Point BodyContactModel::PairPosition(int p, const Vec& u) const {
+  Point x = pair_reference_[p];
+  const std::array<int, 3>& dofs = pair_dofs_[p];
+  for (int c = 0; c < x.size(); ++c) {
+    if (dofs[c] >= 0) x[c] += u[dofs[c]];
+  }
+  return x;
+}
+
 void BodyContactModel::Gaps(const Vec& u, Vec* phi) const {
   CheckSize(u, num_dofs(), "Gaps", "u");
   phi->resize(num_pairs());
   for (int p = 0; p < num_pairs(); ++p) {
-    const ContactPair& pair = pairs_[p];
-    (*phi)[p] = obstacles_[pair.obstacle]->Value(body_->Position(pair.node, u));
+    (*phi)[p] = obstacles_[pairs_[p].obstacle]->Value(PairPosition(p, u));
+  }
+}
+
+void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
+  CheckSize(u, num_dofs(), "GeneralisedReaction", "u");
+  CheckSize(r, num_pairs(), "GeneralisedReaction", "r");
+  reaction->setZero(num_dofs());
+  for (int p = 0; p < num_pairs(); ++p) {
+    const Point grad = obstacles_[pairs_[p].obstacle]->Gradient(PairPosition(p, u));
+    const std::array<int, 3>& dofs = pair_dofs_[p];
+    for (int c = 0; c < grad.size(); ++c) {
+      if (dofs[c] >= 0) (*reaction)[dofs[c]] += grad[c] * r[p];
+    }
   }
 }
 
@@ -108,13 +132,13 @@ void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
   CheckSize(u, num_dofs(), "GapJacobian", "u");
   jacobian_pattern_.Reset(jacobian);
   double* values = jacobian->valuePtr();
-  const DofMap& map = body_->dofs();
-  const int dim = body_->dim();
+  const std::vector<int>& slots = jacobian_pattern_.slots();
   std::size_t next = 0;
-  for (const ContactPair& pair : pairs_) {
-    const Point grad = obstacles_[pair.obstacle]->Gradient(body_->Position(pair.node, u));
-    for (int c = 0; c < dim; ++c) {
-      if (map.dof(pair.node, c) >= 0) values[jacobian_pattern_.slot(next++)] += grad[c];
+  for (int p = 0; p < num_pairs(); ++p) {
+    const Point grad = obstacles_[pairs_[p].obstacle]->Gradient(PairPosition(p, u));
+    const std::array<int, 3>& dofs = pair_dofs_[p];
+    for (int c = 0; c < grad.size(); ++c) {
+      if (dofs[c] >= 0) values[slots[next++]] += grad[c];
     }
   }
 }
@@ -126,19 +150,19 @@ void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature
   CheckSize(r, num_pairs(), "GapCurvature", "r");
   curvature_pattern_.Reset(curvature);
   double* values = curvature->valuePtr();
-  const DofMap& map = body_->dofs();
   const int dim = body_->dim();
+  const std::vector<int>& slots = curvature_pattern_.slots();
   std::size_t next = 0;
   for (int p = 0; p < num_pairs(); ++p) {
-    const ContactPair& pair = pairs_[p];
-    const Obstacle& obstacle = *obstacles_[pair.obstacle];
+    const Obstacle& obstacle = *obstacles_[pairs_[p].obstacle];
     if (!obstacle.is_curved()) continue;
-    const PointMat hess = obstacle.Hessian(body_->Position(pair.node, u));
+    const PointMat hess = obstacle.Hessian(PairPosition(p, u));
+    const std::array<int, 3>& dofs = pair_dofs_[p];
     for (int b = 0; b < dim; ++b) {
-      if (map.dof(pair.node, b) < 0) continue;
+      if (dofs[b] < 0) continue;
       for (int a = 0; a < dim; ++a) {
-        if (map.dof(pair.node, a) < 0) continue;
-        values[curvature_pattern_.slot(next++)] += r[p] * hess(a, b);
+        if (dofs[a] < 0) continue;
+        values[slots[next++]] += r[p] * hess(a, b);
       }
     }
   }

@@ -2,6 +2,7 @@
 // signed distances evaluated at the contact nodes' current positions.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,7 @@ class BodyContactModel final : public ContactModel {
   void Stiffness(const Vec& u, SpMat* stiffness) const override { body_->Stiffness(u, stiffness); }
   void Gaps(const Vec& u, Vec* phi) const override;
   void GapJacobian(const Vec& u, SpMat* jacobian) const override;
+  void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override;
   void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
   const Vec& load_pattern() const override { return load_; }
 
@@ -45,9 +47,14 @@ class BodyContactModel final : public ContactModel {
   std::shared_ptr<const ElasticBody> body_;
   std::vector<std::shared_ptr<const Obstacle>> obstacles_;
   std::vector<ContactPair> pairs_;
+  // Current position of pair p's node, from the per-pair data below (no virtual calls).
+  Point PairPosition(int p, const Vec& u) const;
+
   Vec load_;
-  ScatterPattern jacobian_pattern_;   // row p on the free dofs of pair p's node
-  ScatterPattern curvature_pattern_;  // node blocks of pairs on curved obstacles
+  std::vector<Point> pair_reference_;          // X of each pair's node
+  std::vector<std::array<int, 3>> pair_dofs_;  // its dofs, -1 where supported
+  ScatterPattern jacobian_pattern_;            // row p on the free dofs of pair p's node
+  ScatterPattern curvature_pattern_;           // node blocks of pairs on curved obstacles
 };
 
 }  // namespace cb

@@ -34,6 +34,13 @@ class ContactModel {
   virtual void Gaps(const Vec& u, Vec* phi) const = 0;
   // grad phi(u) (nc x d): row p is the obstacle's normal on pair p's node dofs.
   virtual void GapJacobian(const Vec& u, SpMat* jacobian) const = 0;
+  // grad phi(u)^T r (size d), the generalised reaction of (9). The default forms the gap
+  // Jacobian; models override it to avoid assembling a matrix only to multiply it.
+  virtual void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
+    SpMat jacobian;
+    GapJacobian(u, &jacobian);
+    *reaction = jacobian.transpose() * r;
+  }
   // sum_p r_p hess phi_p(u) (d x d), the curvature term of curved obstacles. Its pattern
   // depends on neither u nor r (pairs on flat obstacles contribute nothing).
   virtual void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const = 0;

@@ -20,13 +20,8 @@ void CheckSize(const Vec& u, int num_dofs, const char* what) {
   }
 }
 
-// The dofs of a member's two end nodes, [node_i components, node_j components], -1 if fixed.
-struct MemberDofs {
-  int dof[6];
-};
-
-MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
-  MemberDofs out{};
+Truss::MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
+  Truss::MemberDofs out{};
   const int dim = map.dim();
   for (int c = 0; c < dim; ++c) {
     out.dof[c] = map.dof(m.node_i, c);
@@ -44,26 +39,23 @@ MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
 //   l - L = (l^2 - L^2) / (l + L) = (2 dX.du + |du|^2) / (l + L)
 // keeps full relative accuracy of the elongation even when it is tiny.
 Truss::Kinematics Truss::MemberKinematics(std::size_t member, const Vec& u) const {
-  const TrussMember& m = members_[member];
   const int d = dim();
-  Point du = Point::Zero(d);
-  for (int c = 0; c < d; ++c) {
-    const int dof_j = dofs_.dof(m.node_j, c);
-    const int dof_i = dofs_.dof(m.node_i, c);
-    du[c] = (dof_j >= 0 ? u[dof_j] : 0.0) - (dof_i >= 0 ? u[dof_i] : 0.0);
-  }
-  const Point& reference_delta = reference_deltas_[member];
+  const MemberDofs& md = member_dofs_[member];
+  const double* dx = reference_deltas_[member].data();
   Kinematics k;
-  k.delta = reference_delta + du;
-  k.length = k.delta.norm();
-  // Plain loops: GCC 12 misreads Eigen's vectorised reductions on these fixed-capacity points
-  // (a false -Warray-bounds).
+  double length2 = 0.0;
   double dx_du = 0.0;
   double du_du = 0.0;
   for (int c = 0; c < d; ++c) {
-    dx_du += reference_delta[c] * du[c];
-    du_du += du[c] * du[c];
+    const int dof_i = md.dof[c];
+    const int dof_j = md.dof[d + c];
+    const double du = (dof_j >= 0 ? u[dof_j] : 0.0) - (dof_i >= 0 ? u[dof_i] : 0.0);
+    k.delta[c] = dx[c] + du;
+    length2 += k.delta[c] * k.delta[c];
+    dx_du += dx[c] * du;
+    du_du += du * du;
   }
+  k.length = std::sqrt(length2);
   k.elongation = (2.0 * dx_du + du_du) / (k.length + lengths_[member]);
   return k;
 }
@@ -110,6 +102,7 @@ Truss::Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool
     lengths_.push_back(length);
     reference_deltas_.push_back(
         (coordinates_.row(m.node_j) - coordinates_.row(m.node_i)).transpose());
+    member_dofs_.push_back(DofsOf(dofs_, m));
   }
 
   // Stiffness pattern: each member contributes its (2 dim) x (2 dim) block on the free dofs of
@@ -161,11 +154,12 @@ void Truss::InternalForce(const Vec& u, Vec* force) const {
     const TrussMember& m = members_[k];
     const Kinematics kin = MemberKinematics(k, u);
     const double axial = m.youngs_modulus * m.area * kin.elongation / lengths_[k];
-    const Point f = (axial / kin.length) * kin.delta;
-    const MemberDofs md = DofsOf(dofs_, m);
+    const double scale = axial / kin.length;
+    const MemberDofs& md = member_dofs_[k];
     for (int c = 0; c < d; ++c) {
-      if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f[c];
-      if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f[c];
+      const double f = scale * kin.delta[c];
+      if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f;
+      if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f;
     }
   }
 }
@@ -177,6 +171,7 @@ void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
   const int d = dim();
   stiffness_pattern_.Reset(stiffness);
   double* values = stiffness->valuePtr();
+  const std::vector<int>& slots = stiffness_pattern_.slots();
   std::size_t next = 0;
   for (std::size_t k = 0; k < members_.size(); ++k) {
     const TrussMember& m = members_[k];
@@ -185,17 +180,29 @@ void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
     const double reference = lengths_[k];
     const double ea = m.youngs_modulus * m.area;
     const double axial = ea * kin.elongation / reference;
-    const Point e = kin.delta / length;
-    PointMat block = (axial / length) * PointMat::Identity(d, d);
-    block.noalias() += (ea / reference - axial / length) * e * e.transpose();
-    const MemberDofs md = DofsOf(dofs_, m);
-    for (int b = 0; b < 2 * d; ++b) {
-      if (md.dof[b] < 0) continue;
-      for (int a = 0; a < 2 * d; ++a) {
-        if (md.dof[a] < 0) continue;
-        // Same node side -> +k, opposite sides -> -k.
-        const double s = ((a < d) == (b < d)) ? 1.0 : -1.0;
-        values[stiffness_pattern_.slot(next++)] += s * block(a % d, b % d);
+    double e[3];
+    for (int c = 0; c < d; ++c) e[c] = kin.delta[c] / length;
+    const double geometric = axial / length;
+    const double material_minus_geometric = ea / reference - geometric;
+    double block[3][3];
+    for (int a = 0; a < d; ++a) {
+      for (int b = 0; b < d; ++b) {
+        block[a][b] = (a == b ? geometric : 0.0) + material_minus_geometric * e[a] * e[b];
+      }
+    }
+    // The member block [[k, -k], [-k, k]] on (node_i, node_j), in the pattern's order
+    // (column b, then row a, over the free dofs).
+    const MemberDofs& md = member_dofs_[k];
+    for (int side_b = 0; side_b < 2; ++side_b) {
+      for (int cb = 0; cb < d; ++cb) {
+        if (md.dof[side_b * d + cb] < 0) continue;
+        for (int side_a = 0; side_a < 2; ++side_a) {
+          const double sign = side_a == side_b ? 1.0 : -1.0;
+          for (int ca = 0; ca < d; ++ca) {
+            if (md.dof[side_a * d + ca] < 0) continue;
+            values[slots[next++]] += sign * block[ca][cb];
+          }
+        }
       }
     }
   }

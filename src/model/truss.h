@@ -34,22 +34,28 @@ class Truss final : public ElasticBody {
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
 
   const std::vector<TrussMember>& members() const { return members_; }
+  // The dofs of a member's end nodes, [node_i components, node_j components], -1 if fixed.
+  struct MemberDofs {
+    int dof[6];
+  };
   double ReferenceLength(int member) const { return lengths_[member]; }
   // Axial force N = E A (l - L) / L of a member (tension positive).
   double MemberForce(int member, const Vec& u) const;
 
  private:
   struct Kinematics {
-    Point delta;        // x_j - x_i
+    double delta[3];    // x_j - x_i (dim() entries used)
     double length;      // l = |x_j - x_i|
     double elongation;  // l - L, computed without cancellation
   };
+
   Kinematics MemberKinematics(std::size_t member, const Vec& u) const;
 
   Mat coordinates_;
   std::vector<TrussMember> members_;
   std::vector<double> lengths_;
   std::vector<Point> reference_deltas_;  // X_j - X_i
+  std::vector<MemberDofs> member_dofs_;
   DofMap dofs_;
   ScatterPattern stiffness_pattern_;
 };

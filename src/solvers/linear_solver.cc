@@ -18,15 +18,12 @@
 namespace cb {
 namespace {
 
-// The part every backend shares: argument checks, a private copy of the matrix, and the
-// decision whether the symbolic analysis must be redone.
-//
-// The copy exists for two reasons. Eigen's UMFPACK wrapper keeps a reference to the factorised
-// matrix and reads it again in every solve (iterative refinement), so a caller that refills or
-// destroys its matrix between Factorize and Solve would otherwise corrupt the solve. And the
-// copy's index arrays are exactly the "previous pattern" we compare against. Copying into the
-// same storage costs O(nnz) and allocates nothing while the pattern is unchanged, which is
-// negligible next to a numerical factorisation.
+// The part every backend shares: argument checks, the non-finite check, and the decision
+// whether the symbolic analysis must be redone, by comparing the pattern with a copy of the
+// index arrays last analysed (O(nnz) integer compares, small next to a factorisation).
+// A backend whose factorisation keeps referring to the matrix (Eigen's UMFPACK wrapper re-reads
+// it in every solve for iterative refinement) asks for a private copy of it, so that a caller
+// that refills or destroys its matrix between Factorize and Solve cannot corrupt the solve.
 class PatternTrackingSolver : public LinearSolver {
  public:
   bool Factorize(const SpMat& a) final {
@@ -52,15 +49,22 @@ class PatternTrackingSolver : public LinearSolver {
         return false;
       }
     }
-    const bool pattern_changed = !analysed_ || !SamePattern(m, matrix_);
-    matrix_ = m;
+    const bool pattern_changed = !analysed_ || !SamePattern(m);
+    const SpMat* factor = &m;
+    if (KeepsMatrixReference()) {
+      matrix_ = m;
+      factor = &matrix_;
+    }
     if (pattern_changed) {
       analysed_ = false;
+      outer_.assign(m.outerIndexPtr(), m.outerIndexPtr() + m.outerSize() + 1);
+      inner_.assign(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
+      size_ = m.rows();
       ++num_analyses_;
-      if (!Analyze(matrix_, &message_)) return false;
+      if (!Analyze(*factor, &message_)) return false;
       analysed_ = true;
     }
-    if (!NumericFactorize(matrix_, &message_)) return false;
+    if (!NumericFactorize(*factor, &message_)) return false;
     factorized_ = true;
     message_.clear();
     return true;
@@ -72,10 +76,10 @@ class PatternTrackingSolver : public LinearSolver {
       message_ = name() + ": Solve called without a successful factorisation";
       return false;
     }
-    if (b.size() != matrix_.rows()) {
+    if (b.size() != size_) {
       throw std::invalid_argument(name() + ": right-hand side has size " +
                                   std::to_string(b.size()) + ", the matrix has " +
-                                  std::to_string(matrix_.rows()) + " rows");
+                                  std::to_string(size_) + " rows");
     }
     // The backends read b while writing x; an aliased call goes through a private copy.
     const Vec* rhs = &b;
@@ -104,18 +108,22 @@ class PatternTrackingSolver : public LinearSolver {
   virtual bool BackSolve(const Vec& b, Vec* x, std::string* why) = 0;
 
   void CountFullFactorization() { ++num_full_factorizations_; }
+  // True for a backend whose factorisation refers to the matrix after Factorize returns.
+  virtual bool KeepsMatrixReference() const { return false; }
 
  private:
-  static bool SamePattern(const SpMat& a, const SpMat& b) {
-    if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) {
+  bool SamePattern(const SpMat& a) const {
+    if (a.rows() != size_ || a.cols() != size_ ||
+        static_cast<std::size_t>(a.nonZeros()) != inner_.size()) {
       return false;
     }
-    return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1,
-                      b.outerIndexPtr()) &&
-           std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+    return std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
   }
 
-  SpMat matrix_;
+  std::vector<int> outer_, inner_;  // the pattern last analysed
+  Eigen::Index size_ = 0;
+  SpMat matrix_;  // private copy, for backends that keep referring to the matrix
   SpMat uncompressed_scratch_;
   Vec rhs_;
   bool analysed_ = false;
@@ -189,6 +197,7 @@ class UmfpackSolver final : public PatternTrackingSolver {
   std::string name() const override { return "umfpack"; }
 
  protected:
+  bool KeepsMatrixReference() const override { return true; }
   bool Analyze(const SpMat& a, std::string* why) override {
     lu_.analyzePattern(a);
     if (lu_.info() != Eigen::Success) {
@@ -241,13 +250,16 @@ class UmfpackSolver final : public PatternTrackingSolver {
 //    stays outside the LU factors. That saved 16% of the flops and ~14% of the time on the
 //    block. Arc-length Jacobians are irreducible and pay only the maximum transversal in each
 //    analysis. (With row scaling on and BTF off, one arch system was solved only to 1e-6.)
-//  - scale 0, NOT the default 2 (rows divided by their largest entry): the formulations already
+//  - scale -1, NOT the default 2 (rows divided by their largest entry): the formulations already
 //    make every row dimensionless (METHOD.md section 2), so KLU's row scaling buys nothing and
 //    costs time: without it the block's 13 Newton systems took 0.175 s instead of 0.21 s, n = 100
 //    2.0 s instead of 2.1 s, the arch's 601 systems 0.025 s instead of 0.027 s, with relative
 //    residuals as good or better (block 3e-12 and 1e-11 instead of 1e-11 and 4e-10; arch 1.3e-10
 //    either way). The refactorisation checks below then see unscaled rows, which is again fine
-//    for dimensionless rows; like sparse-lu, klu does not equilibrate a badly scaled matrix;
+//    for dimensionless rows; like sparse-lu, klu does not equilibrate a badly scaled matrix.
+//    -1 rather than 0 also skips KLU's validation pass over the input inside every
+//    klu_refactor (7% of a P3 Newton iteration): the input is an Eigen compressed matrix, whose
+//    column pointers are monotone and row indices sorted, unique and in range by construction;
 //  - tol 0.001 (the default preference for diagonal pivots): 0.01 to 1 changed neither the fill
 //    nor the time.
 class KluSolver final : public PatternTrackingSolver {
@@ -256,7 +268,7 @@ class KluSolver final : public PatternTrackingSolver {
     klu_defaults(&common_);
     common_.ordering = 0;  // AMD
     common_.btf = 1;
-    common_.scale = 0;  // see above; -1 would also skip KLU's check of the input
+    common_.scale = -1;  // no row scaling, no validation pass: see above
   }
   ~KluSolver() override { FreeFactors(); }
   KluSolver(const KluSolver&) = delete;
@@ -306,22 +318,18 @@ class KluSolver final : public PatternTrackingSolver {
  private:
   // Accept a refactorisation with the previous pivot order only when it is about as accurate as
   // a fresh one. Rejected: a zero pivot; a pivot below machine epsilon times the largest
-  // (klu_rcond, min |u_kk| / max |u_kk|: such a pivot is rounding noise); reciprocal pivot growth
-  // below 1e-8 (klu_rgrowth, the smallest over columns of max |A(:,j)| / max |U(:,j)|: the
-  // backward error grows with 1 / rgrowth, and growth need not show on the diagonal). rgrowth
-  // is invariant to column scaling, rcond is not: for a matrix whose unknowns differ by ~1e16 in
-  // scale every refactorisation would be redone in full (correct, just slower). Our unknowns
-  // are scaled (METHOD.md section 2).
+  // (klu_rcond, min |u_kk| / max |u_kk|: such a pivot is rounding noise). rcond is not invariant
+  // to column scaling: for a matrix whose unknowns differ by ~1e16 in scale every
+  // refactorisation would be redone in full (correct, just slower). Our unknowns are scaled
+  // (METHOD.md section 2).
   //
   // Measured on the block's Newton sequences (n = 50 and 100): fresh factorisations kept
-  // rgrowth >= 2e-2 and rcond >= 9e-9, residuals <= 7e-13. Refactorisations with the first
-  // pivot order drift as the contacts settle, rcond falling ~10x per iteration, and the
-  // residual follows: 3e-12 at rcond 6e-16, 1.4e-10 at 2e-18, 5e-8 at 4e-27 (rgrowth 6e-11);
-  // with KLU's row scaling on, the drift ended at rgrowth 4e-12 and residual 1. With these
-  // limits accepted refactorisations stay <= 1e-11, at the price of one (n = 50) or two
-  // (n = 100) discarded refactorisations per solve. Both checks are cheap: klu_rcond reads
-  // diag(U), klu_rgrowth makes one pass over A and U (~5% of a refactorisation).
-  static constexpr double kMinRefactorRgrowth = 1e-8;
+  // rcond >= 9e-9, residuals <= 7e-13. Refactorisations with the first pivot order drift as the
+  // contacts settle, rcond falling ~10x per iteration, and the residual follows: 3e-12 at rcond
+  // 6e-16 (accepted), 1.4e-10 at 2e-18 and 5e-8 at 4e-27 (both rejected). A pivot-growth test
+  // (klu_rgrowth) catches the same cases here but costs a pass over A and U plus a rescaling,
+  // measured at 40% of a refactorisation on P3: it is left out. An inexact Newton direction
+  // costs at most iterations, never the answer, which the verdict judges.
   static constexpr double kMinRefactorRcond = std::numeric_limits<double>::epsilon();
 
   bool RefactorIsSound(const SpMat& a) {
@@ -331,12 +339,7 @@ class KluSolver final : public PatternTrackingSolver {
       return false;  // a zero pivot in the old order: the values are partly undefined now
     }
     // Negated comparisons so that a NaN estimate also rejects.
-    if (klu_rcond(symbolic_, numeric_, &common_) == 0 || !(common_.rcond >= kMinRefactorRcond)) {
-      return false;
-    }
-    return klu_rgrowth(ColumnPointers(a), RowIndices(a), Values(a), symbolic_, numeric_,
-                       &common_) != 0 &&
-           common_.rgrowth >= kMinRefactorRgrowth;
+    return klu_rcond(symbolic_, numeric_, &common_) != 0 && common_.rcond >= kMinRefactorRcond;
   }
 
   // KLU's C API takes non-const pointers but only reads the matrix; `a` is the base class's

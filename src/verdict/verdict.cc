@@ -18,13 +18,12 @@ Verdict Judge(const StepProblem& step, const StepPoint& point, double tolerance)
   const Vec u = step.base.u + point.du;
   const double lambda = step.base.lambda + point.dlambda;
 
-  Vec internal, phi;
+  Vec internal, phi, reaction;
   model.InternalForce(u, &internal);
   model.Gaps(u, &phi);
-  SpMat gap_jacobian;
-  model.GapJacobian(u, &gap_jacobian);
+  model.GeneralisedReaction(u, point.r, &reaction);
   const Vec external = lambda * model.load_pattern();
-  const Vec equilibrium = internal - external - gap_jacobian.transpose() * point.r;
+  const Vec equilibrium = internal - external - reaction;
   const Vec g = -phi;
 
   Verdict v;
