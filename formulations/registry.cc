@@ -3,15 +3,53 @@
 #include <stdexcept>
 
 #include "formulations/implicit_fb/implicit_fb.h"
+#include "formulations/ipopt/ipopt.h"
+#include "formulations/nlopt/nlopt.h"
+#include "formulations/nonsmooth/nonsmooth.h"
 
 namespace cb {
 
-std::vector<FormulationInfo> FormulationRegistry() {
-  return {
+namespace {
+
+std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config) {
+  if (config.eta < 1 || config.eta > 4) {
+    throw std::invalid_argument("eta must be 1, 2, 3 or 4 (got " + std::to_string(config.eta) +
+                                ")");
+  }
+  OptionReader reader("implicit-fb", config.options);
+  ImplicitFbOptions options;
+  options.eta = static_cast<EtaCase>(config.eta);
+  options.solver = config.solver;
+  options.solver_options = config.solver_options;
+  options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
+  options.rho_min = reader.GetReal("rho_min", options.rho_min);
+  reader.Finish();
+  return std::make_unique<ImplicitFb>(options);
+}
+
+}  // namespace
+
+const std::vector<FormulationInfo>& FormulationRegistry() {
+  static const std::vector<FormulationInfo> registry = {
       {"implicit-fb",
        "implicit smoothed Fischer-Burmeister equations (29)-(33), rho an unknown; eta cases 1-4",
-       true},
+       true, MakeImplicitFb},
+      {"nonsmooth-fb", "(29), (30), (33) with the plain FB function, semismooth Newton", true,
+       MakeNonsmoothFb},
+      {"active-set", "(29), (30), (33) with min(g, -r): primal-dual active set", true,
+       MakeActiveSet},
+      {"ipopt-energy", "fixed-load energy minimisation s.t. phi(u) <= 0, Ipopt", IpoptAvailable(),
+       MakeIpoptEnergy},
+      {"ipopt-mpcc", "the step as an MPCC NLP (Scholtes relaxation or penalty), Ipopt",
+       IpoptAvailable(), MakeIpoptMpcc},
+      {"nlopt-merit", "1/2 ||F||^2 of the implicit smoothed-FB system, NLopt LD_LBFGS",
+       NloptAvailable(), MakeNloptMerit},
+      {"nlopt-energy", "fixed-load energy NLP, NLopt LD_MMA / LD_CCSAQ / LD_SLSQP",
+       NloptAvailable(), MakeNloptEnergy},
+      {"nlopt-mpcc", "the step NLP in penalty form, NLopt LD_SLSQP", NloptAvailable(),
+       MakeNloptMpcc},
   };
+  return registry;
 }
 
 std::vector<std::string> FormulationNames() {
@@ -22,16 +60,14 @@ std::vector<std::string> FormulationNames() {
 
 std::unique_ptr<Formulation> MakeFormulation(const std::string& name,
                                              const FormulationConfig& config) {
-  if (name == "implicit-fb") {
-    if (config.eta < 1 || config.eta > 4) {
-      throw std::invalid_argument("eta must be 1, 2, 3 or 4 (got " + std::to_string(config.eta) +
-                                  ")");
+  for (const auto& info : FormulationRegistry()) {
+    if (info.name != name) continue;
+    if (!info.available) {
+      throw std::invalid_argument("formulation '" + name +
+                                  "' is not available in this build (its dependency was not "
+                                  "found at configure time)");
     }
-    ImplicitFbOptions options;
-    options.eta = static_cast<EtaCase>(config.eta);
-    options.solver = config.solver;
-    options.solver_options = config.solver_options;
-    return std::make_unique<ImplicitFb>(options);
+    return info.make(config);
   }
   std::string valid;
   for (const auto& n : FormulationNames()) valid += (valid.empty() ? "" : ", ") + n;

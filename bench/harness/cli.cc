@@ -43,11 +43,12 @@ constexpr const char* kUsage = R"(usage:
                    [--solver newton|dogleg|quasi-newton] [--eta 1|2|3|4]
                    [--steps N] [--arc-length THETA] [--start warm|cold] [--tol T]
                    [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
-                   [--time-limit SECONDS] [--set KEY=VALUE ...]
+                   [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
   contactbench help
 
 run writes DIR/steps.csv, iterations.csv, kinks.csv, solution.csv and contacts.csv.
---set changes a problem parameter (see `contactbench list` for each problem's parameters).
+--set changes a problem parameter (see `contactbench list` for each problem's parameters);
+--option passes a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min).
 Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
 4 interrupted (records kept).
 )";
@@ -144,6 +145,13 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
     } else if (o == "--time-limit") {
       a.time_limit = ParseNumber(o, value(i));
       if (!(a.time_limit > 0.0)) throw UsageError("--time-limit: must be positive");
+    } else if (o == "--option") {
+      const std::string& kv = value(i);
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        throw UsageError("--option: expected KEY=VALUE, got '" + kv + "'");
+      }
+      a.config.options[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else if (o == "--set") {
       const std::string& kv = value(i);
       const auto eq = kv.find('=');
