@@ -11,6 +11,7 @@
 #include "core/timer.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "path/path.h"
+#include "path/replay.h"
 #include "problems/problem.h"
 #include "solvers/linear_solver.h"
 #include "verdict/verdict.h"
@@ -55,19 +56,6 @@ void BM_BlockColdSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_BlockColdSolve)->Arg(25)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 
-// Records the accepted states of a path.
-class StateRecorder final : public PathObserver {
- public:
-  void OnAttempt(const StepAttempt& a) override {
-    if (a.accepted) {
-      states.push_back(a.state);
-      increments.push_back(a.result.point);
-    }
-  }
-  std::vector<State> states;
-  std::vector<StepPoint> increments;
-};
-
 // A warm P3 step in replay mode: the state after accepted step `k` of the reference path and
 // the increment that led there; the timed work is step k + 1 with a formulation whose pattern
 // is already analysed (the steady state of a path).
@@ -75,7 +63,7 @@ void BM_ArchCurvedWarmStep(benchmark::State& state) {
   const Problem p = MakeProblem("arch-curved");
   const int k = static_cast<int>(state.range(0));
   ImplicitFb reference(Options());
-  StateRecorder recorder;
+  PathRecorder recorder;
   PathOptions options;
   options.arc_length = p.arc_length;
   options.max_steps = k;
@@ -185,7 +173,7 @@ BENCHMARK(BM_IterationOverFactorizationBlock)->Unit(benchmark::kMillisecond);
 void BM_IterationOverFactorizationArchCurved(benchmark::State& state) {
   const Problem p = MakeProblem("arch-curved");
   ImplicitFb reference(Options());
-  StateRecorder recorder;
+  PathRecorder recorder;
   PathOptions options;
   options.arc_length = p.arc_length;
   options.max_steps = 100;

@@ -124,6 +124,38 @@ TEST(CliTest, AFailedRunExitsWith3AndKeepsItsRecords) {
   EXPECT_NE(steps[1].find(",false,"), std::string::npos);
 }
 
+TEST(CliTest, CompareReplaysTheSameStepsForEveryFormulationAndStart) {
+  const auto dir = TempDir("compare");
+  const Outcome o = RunCli("compare --problem two-bar-obstacle --formulations implicit-fb "
+                           "--starts warm,cold --solver newton --steps 40 --arc-length 0.02 "
+                           "--out " + dir.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto steps = Lines(dir / "steps.csv");
+  // One attempt per reference step for each start, labelled replay.
+  int warm = 0, cold = 0;
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    EXPECT_NE(steps[i].find(",replay,"), std::string::npos) << steps[i];
+    if (steps[i].rfind("two-bar-obstacle,implicit-fb,newton,warm,", 0) == 0) ++warm;
+    if (steps[i].rfind("two-bar-obstacle,implicit-fb,newton,cold,", 0) == 0) ++cold;
+  }
+  EXPECT_EQ(warm, 40);
+  EXPECT_EQ(cold, 40);
+  const auto runs = Lines(dir / "runs.csv");
+  ASSERT_EQ(runs.size(), 3u);  // header + warm + cold
+  EXPECT_NE(runs[1].find(",warm,replay,"), std::string::npos) << runs[1];
+  // Warm replay of the implicit formulation's own reference verifies every step.
+  EXPECT_NE(runs[1].find(",converged,40,40,"), std::string::npos) << runs[1];
+  EXPECT_EQ(Lines(dir / "kinks.csv").size(), 2u);  // the reference path's contact change
+}
+
+TEST(CliTest, CompareRefusesUnprefixedOptionsAndUnknownFormulations) {
+  const auto dir = TempDir("compare_bad").string();
+  EXPECT_EQ(RunCli("compare --problem two-bar --option rho_min=1e-3 --out " + dir).status, 2);
+  EXPECT_EQ(RunCli("compare --problem two-bar --formulations nope --out " + dir).status, 2);
+  EXPECT_EQ(RunCli("compare --problem two-bar --option nope:a=1 --out " + dir).status, 2);
+  EXPECT_EQ(RunCli("compare --problem two-bar --mode sideways --out " + dir).status, 2);
+}
+
 TEST(CliTest, BlockRunsTheFixedLoadSolve) {
   const auto dir = TempDir("block");
   const Outcome o = RunCli(

@@ -16,6 +16,7 @@
 #include "formulations/registry.h"
 #include "harness/records.h"
 #include "path/path.h"
+#include "path/replay.h"
 #include "problems/problem.h"
 #include "solvers/linear_solver.h"
 
@@ -44,20 +45,35 @@ constexpr const char* kUsage = R"(usage:
                    [--steps N] [--arc-length THETA] [--start warm|cold] [--tol T]
                    [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
                    [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
+  contactbench compare --problem NAME --out DIR [--formulations A,B,...] [--starts warm,cold]
+                   [--mode replay|free] [--reference NAME] [--steps N] [--arc-length THETA]
+                   [--solver S] [--eta E] [--tol T] [--linear-solver NAME] [--time-limit SECONDS]
+                   [--set KEY=VALUE ...] [--option FORMULATION:KEY=VALUE ...]
   contactbench help
 
 run writes DIR/steps.csv, iterations.csv, kinks.csv, solution.csv and contacts.csv.
 --set changes a problem parameter (see `contactbench list` for each problem's parameters);
---option passes a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min).
+--option passes a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); with
+compare, prefix it with the formulation's name.
+compare: every formulation x start traces the SAME steps (replay mode: each step starts from
+the reference path's previous accepted state; the reference is traced first by --reference,
+default implicit-fb) or its own path (free mode), into one long-format steps.csv and
+iterations.csv, the reference path's kinks.csv, and runs.csv (one row per formulation x start).
 Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
 4 interrupted (records kept).
 )";
 
 struct RunArguments {
   std::string problem;
-  std::string formulation;
+  std::string formulation;                // run
+  std::vector<std::string> formulations;  // compare
+  std::vector<StartKind> starts;          // compare
+  std::string mode = "replay";            // compare
+  std::string reference = "implicit-fb";  // compare
   std::string out;
   FormulationConfig config;
+  // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
+  std::map<std::string, std::map<std::string, std::string>> options;
   std::optional<int> steps;
   std::optional<double> arc_length;
   StartKind start = StartKind::kWarm;
@@ -87,7 +103,27 @@ int ParseInteger(const std::string& option, const std::string& text) {
   return static_cast<int>(v);
 }
 
-RunArguments ParseRun(const std::vector<std::string>& args) {
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::size_t end = comma == std::string::npos ? text.size() : comma;
+    if (end > start) items.push_back(text.substr(start, end - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return items;
+}
+
+StartKind ParseStart(const std::string& option, const std::string& s) {
+  if (s == "warm") return StartKind::kWarm;
+  if (s == "cold") return StartKind::kCold;
+  throw UsageError(option + ": '" + s + "' is not one of: warm, cold");
+}
+
+// Arguments of `run` (compare = false) or `compare` (compare = true).
+RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) {
   RunArguments a;
   auto value = [&](std::size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
@@ -97,8 +133,26 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
     const std::string& o = args[i];
     if (o == "--problem") {
       a.problem = value(i);
-    } else if (o == "--formulation") {
+    } else if (o == "--formulation" && !compare) {
       a.formulation = value(i);
+    } else if (o == "--formulations" && compare) {
+      a.formulations = SplitList(value(i));
+      for (const auto& f : a.formulations) {
+        const auto names = FormulationNames();
+        if (std::find(names.begin(), names.end(), f) == names.end()) {
+          throw UsageError("--formulations: unknown formulation '" + f +
+                           "' (valid: " + Join(names) + ")");
+        }
+      }
+    } else if (o == "--starts" && compare) {
+      for (const auto& s : SplitList(value(i))) a.starts.push_back(ParseStart(o, s));
+    } else if (o == "--mode" && compare) {
+      a.mode = value(i);
+      if (a.mode != "replay" && a.mode != "free") {
+        throw UsageError("--mode: '" + a.mode + "' is not one of: replay, free");
+      }
+    } else if (o == "--reference" && compare) {
+      a.reference = value(i);
     } else if (o == "--out") {
       a.out = value(i);
     } else if (o == "--solver") {
@@ -117,15 +171,8 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
     } else if (o == "--arc-length") {
       a.arc_length = ParseNumber(o, value(i));
       if (!(*a.arc_length > 0.0)) throw UsageError("--arc-length: must be positive");
-    } else if (o == "--start") {
-      const std::string& s = value(i);
-      if (s == "warm") {
-        a.start = StartKind::kWarm;
-      } else if (s == "cold") {
-        a.start = StartKind::kCold;
-      } else {
-        throw UsageError("--start: '" + s + "' is not one of: warm, cold");
-      }
+    } else if (o == "--start" && !compare) {
+      a.start = ParseStart(o, value(i));
     } else if (o == "--tol") {
       a.tolerance = ParseNumber(o, value(i));
       if (!(a.tolerance > 0.0)) throw UsageError("--tol: must be positive");
@@ -137,10 +184,10 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
         throw UsageError("--linear-solver: unknown '" + a.config.solver_options.linear_solver +
                          "' (valid: " + Join(names) + ")");
       }
-    } else if (o == "--max-cutbacks") {
+    } else if (o == "--max-cutbacks" && !compare) {
       a.max_cutbacks = ParseInteger(o, value(i));
       if (a.max_cutbacks < 0) throw UsageError("--max-cutbacks: must be >= 0");
-    } else if (o == "--no-kinks") {
+    } else if (o == "--no-kinks" && !compare) {
       a.locate_kinks = false;
     } else if (o == "--time-limit") {
       a.time_limit = ParseNumber(o, value(i));
@@ -148,10 +195,15 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
     } else if (o == "--option") {
       const std::string& kv = value(i);
       const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) {
-        throw UsageError("--option: expected KEY=VALUE, got '" + kv + "'");
+      const auto colon = kv.find(':');
+      const bool prefixed = colon != std::string::npos && colon < eq;
+      if (eq == std::string::npos || eq == 0 || (compare && !prefixed)) {
+        throw UsageError(std::string("--option: expected ") +
+                         (compare ? "FORMULATION:KEY=VALUE" : "KEY=VALUE") + ", got '" + kv + "'");
       }
-      a.config.options[kv.substr(0, eq)] = kv.substr(eq + 1);
+      const std::string owner = prefixed ? kv.substr(0, colon) : "";
+      const std::string key = prefixed ? kv.substr(colon + 1, eq - colon - 1) : kv.substr(0, eq);
+      a.options[owner][key] = kv.substr(eq + 1);
     } else if (o == "--set") {
       const std::string& kv = value(i);
       const auto eq = kv.find('=');
@@ -165,11 +217,62 @@ RunArguments ParseRun(const std::vector<std::string>& args) {
   }
   if (a.problem.empty())
     throw UsageError("--problem is required (valid: " + Join(ProblemNames()) + ")");
-  if (a.formulation.empty()) {
+  if (!compare && a.formulation.empty()) {
     throw UsageError("--formulation is required (valid: " + Join(FormulationNames()) + ")");
   }
+  if (compare && a.formulations.empty()) {
+    for (const auto& info : FormulationRegistry()) {
+      if (info.available) a.formulations.push_back(info.name);
+    }
+  }
+  if (compare && a.starts.empty()) a.starts = {StartKind::kWarm};
   if (a.out.empty()) throw UsageError("--out DIR is required");
+  for (const auto& [owner, kv] : a.options) {
+    if (owner.empty()) continue;
+    const auto names = FormulationNames();
+    if (std::find(names.begin(), names.end(), owner) == names.end()) {
+      throw UsageError("--option: unknown formulation '" + owner + "' (valid: " + Join(names) +
+                       ")");
+    }
+  }
   return a;
+}
+
+// The configuration of formulation `name`: the common settings plus its own --option values.
+FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
+  FormulationConfig config = a.config;
+  for (const auto& owner : {std::string(), name}) {
+    auto it = a.options.find(owner);
+    if (it != a.options.end()) config.options.insert(it->second.begin(), it->second.end());
+  }
+  return config;
+}
+
+PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
+  PathOptions options;
+  options.arc_length = a.arc_length.value_or(problem.arc_length);
+  options.max_steps = a.steps.value_or(problem.steps);
+  options.tolerance = a.tolerance;
+  options.start = a.start;
+  options.max_cutbacks = a.max_cutbacks;
+  options.locate_kinks = a.locate_kinks;
+  options.controls.time_limit_s = a.time_limit;
+  options.controls.interrupted = [] { return g_interrupted.load(); };
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  return options;
+}
+
+// Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
+PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
+                  PathObserver* observer) {
+  const State initial = ZeroState(*problem.model);
+  if (problem.loading == LoadingKind::kFixedLoad) {
+    return SolveFixedLoad(*problem.model, problem.scales, initial, problem.load, formulation,
+                          options, observer);
+  }
+  return TraceArcLengthPath(*problem.model, problem.scales, initial, formulation, options,
+                            observer);
 }
 
 int List() {
@@ -204,47 +307,120 @@ void PrepareOutput(const std::string& dir) {
 }
 
 int Run(const std::vector<std::string>& args) {
-  RunArguments a = ParseRun(args);
+  RunArguments a = ParseArguments(args, false);
   Problem problem;
   std::unique_ptr<Formulation> formulation;
   try {
     problem = MakeProblem(a.problem, a.settings);
-    formulation = MakeFormulation(a.formulation, a.config);
+    formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
   PrepareOutput(a.out);
-
-  PathOptions options;
-  options.arc_length = a.arc_length.value_or(problem.arc_length);
-  options.max_steps = a.steps.value_or(problem.steps);
-  options.tolerance = a.tolerance;
-  options.start = a.start;
-  options.max_cutbacks = a.max_cutbacks;
-  options.locate_kinks = a.locate_kinks;
-  options.controls.time_limit_s = a.time_limit;
-  options.controls.interrupted = [] { return g_interrupted.load(); };
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
-
-  RunRecorder recorder(a.out, problem,
-                       {problem.name, formulation->name(), formulation->solver(),
-                        formulation->settings(), ToString(a.start)});
-  const State initial = ZeroState(*problem.model);
-  PathSummary summary;
-  if (problem.loading == LoadingKind::kFixedLoad) {
-    summary = SolveFixedLoad(*problem.model, problem.scales, initial, problem.load, *formulation,
-                             options, &recorder);
-  } else {
-    summary = TraceArcLengthPath(*problem.model, problem.scales, initial, *formulation, options,
-                                 &recorder);
+  const PathOptions options = MakePathOptions(a, problem);
+  if (problem.loading == LoadingKind::kArcLength &&
+      !formulation->Supports(ConstraintKind::kArcLength)) {
+    throw UsageError(formulation->name() + " cannot express an arc-length step; problem '" +
+                     problem.name + "' is traced by arc length");
   }
-  recorder.WriteSnapshot(summary.final_state, summary.accepted_steps);
+
+  RecordFiles files(a.out);
+  RunRecorder recorder(&files, problem,
+                       {problem.name, formulation->name(), formulation->solver(),
+                        formulation->settings(), ToString(a.start), "run"},
+                       problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
+  const PathSummary summary = Trace(problem, *formulation, options, &recorder);
+  WriteSnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
   std::fprintf(stderr, "%s %s: %s (%d accepted steps, %d attempts, %d kinks) -> %s\n",
                problem.name.c_str(), formulation->name().c_str(), summary.message.c_str(),
                summary.accepted_steps, summary.attempts, summary.kinks, a.out.c_str());
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   if (summary.status != Status::kConverged) return kExitFailure;
+  return kExitOk;
+}
+
+int Compare(const std::vector<std::string>& args) {
+  RunArguments a = ParseArguments(args, true);
+  Problem problem;
+  std::vector<std::unique_ptr<Formulation>> formulations;
+  std::unique_ptr<Formulation> reference;
+  try {
+    problem = MakeProblem(a.problem, a.settings);
+    for (const auto& name : a.formulations) {
+      formulations.push_back(MakeFormulation(name, ConfigFor(a, name)));
+    }
+    reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  PrepareOutput(a.out);
+  PathOptions options = MakePathOptions(a, problem);
+  const ConstraintKind kind = problem.loading == LoadingKind::kFixedLoad
+                                  ? ConstraintKind::kFixedLoad
+                                  : ConstraintKind::kArcLength;
+  const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
+  RecordFiles files(a.out);
+  CsvWriter runs(a.out + "/runs.csv", {"problem", "formulation", "solver", "start", "mode",
+                                       "settings", "status", "steps", "verified", "message"});
+
+  // The reference path: the work every formulation is given in replay mode (warm start,
+  // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
+  PathRecorder path;
+  if (a.mode == "replay") {
+    options.start = StartKind::kWarm;
+    RunRecorder kinks_only(&files, problem,
+                           {problem.name, "reference:" + reference->name(), reference->solver(),
+                            reference->settings(), "warm", "reference"},
+                           total);
+    struct KinkTee final : PathObserver {
+      PathRecorder* path;
+      RunRecorder* kinks;
+      void OnAttempt(const StepAttempt& at) override { path->OnAttempt(at); }
+      void OnKink(const KinkRecord& k) override {
+        path->OnKink(k);
+        kinks->OnKink(k);
+      }
+    } tee;
+    tee.path = &path;
+    tee.kinks = &kinks_only;
+    const PathSummary s = Trace(problem, *reference, options, &tee);
+    std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
+    if (path.states.empty()) {
+      std::fprintf(stderr, "contactbench: the reference path has no verified step to replay\n");
+      return kExitFailure;
+    }
+  }
+
+  for (const auto& formulation : formulations) {
+    for (StartKind start : a.starts) {
+      CsvWriter::Row row;
+      row << problem.name << formulation->name() << formulation->solver() << ToString(start)
+          << a.mode << formulation->settings();
+      if (!formulation->Supports(kind)) {
+        const std::string why =
+            formulation->name() + " cannot express a " + std::string(ToString(kind)) + " step";
+        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
+        row << "skipped" << 0 << 0 << why;
+        runs.Write(row);
+        continue;
+      }
+      RunRecorder recorder(&files, problem,
+                           {problem.name, formulation->name(), formulation->solver(),
+                            formulation->settings(), ToString(start), a.mode},
+                           a.mode == "replay" ? static_cast<int>(path.states.size()) : total);
+      PathOptions run_options = options;
+      run_options.start = start;
+      run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
+      const PathSummary s =
+          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
+                                          path, *formulation, run_options, &recorder)
+                             : Trace(problem, *formulation, run_options, &recorder);
+      row << ToString(s.status) << recorder.attempts() << recorder.verified() << s.message;
+      runs.Write(row);
+      if (s.status == Status::kStoppedByCaller) return kExitInterrupted;
+    }
+  }
+  std::fprintf(stderr, "compare: records in %s\n", a.out.c_str());
   return kExitOk;
 }
 
@@ -261,7 +437,8 @@ int Main(int argc, char** argv) {
     args.erase(args.begin());
     if (command == "list") return List();
     if (command == "run") return Run(args);
-    throw UsageError("unknown command '" + command + "' (valid: list, run, help)");
+    if (command == "compare") return Compare(args);
+    throw UsageError("unknown command '" + command + "' (valid: list, run, compare, help)");
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n" << kUsage;
     return kExitBadArguments;

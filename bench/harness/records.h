@@ -1,5 +1,7 @@
 // The run records of COMPARISON.md: long-format CSV, one row per step attempt, per iteration,
 // per kink, written and flushed as they are produced; solution and contact snapshots at the end.
+// One RecordFiles holds the files of an output directory; each run writes into them through a
+// RunRecorder that labels every row, so a comparison puts all its runs in one long table.
 #pragma once
 
 #include <memory>
@@ -18,33 +20,50 @@ struct RunLabel {
   std::string solver;
   std::string settings;
   std::string start;
+  std::string mode;  // "run" (contactbench run), "replay" or "free" (contactbench compare)
+};
+
+class RecordFiles {
+ public:
+  // Opens DIR/steps.csv, DIR/iterations.csv and DIR/kinks.csv (the directory must exist).
+  explicit RecordFiles(const std::string& directory);
+  const std::string& directory() const { return directory_; }
+  CsvWriter& steps() { return *steps_; }
+  CsvWriter& iterations() { return *iterations_; }
+  CsvWriter& kinks() { return *kinks_; }
+
+ private:
+  std::string directory_;
+  std::unique_ptr<CsvWriter> steps_, iterations_, kinks_;
 };
 
 class RunRecorder final : public PathObserver {
  public:
-  // Opens DIR/steps.csv, DIR/iterations.csv and DIR/kinks.csv (the directory must exist).
-  RunRecorder(const std::string& directory, const Problem& problem, RunLabel label);
+  // `total_steps` is for the progress line (shown on a terminal only).
+  RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label, int total_steps);
 
   void OnAttempt(const StepAttempt& attempt) override;
   void OnKink(const KinkRecord& kink) override;
 
-  // DIR/solution.csv and DIR/contacts.csv for a state (the last accepted one).
-  void WriteSnapshot(const State& state, int step) const;
-
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }
+  int verified() const { return verified_; }
 
  private:
   double ControlDisplacement(const State& state) const;
 
-  std::string directory_;
+  RecordFiles* files_;
   const Problem& problem_;
   RunLabel label_;
-  std::unique_ptr<CsvWriter> steps_, iterations_, kinks_;
   bool all_verified_ = true;
   int attempts_ = 0;
+  int verified_ = 0;
   int total_steps_ = 0;
   bool progress_ = false;  // on a terminal only
 };
+
+// DIR/solution.csv and DIR/contacts.csv for a state (the last accepted one).
+void WriteSnapshot(const std::string& directory, const Problem& problem, const State& state,
+                   int step);
 
 }  // namespace cb::harness

@@ -1,6 +1,7 @@
 #include "core/sparse.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -34,14 +35,13 @@ ScatterPattern::ScatterPattern(int rows, int cols, const std::vector<Entry>& ent
 void ScatterPattern::Reset(SpMat* m) const {
   // Another pattern with the same number of non-zeros must not pass for this one: compare the
   // index arrays (O(nnz), cheap next to any use of the matrix).
-  const bool same = m->rows() == pattern_.rows() && m->cols() == pattern_.cols() &&
-                    m->nonZeros() == pattern_.nonZeros() && m->isCompressed() &&
-                    std::equal(pattern_.outerIndexPtr(),
-                               pattern_.outerIndexPtr() + pattern_.outerSize() + 1,
-                               m->outerIndexPtr()) &&
-                    std::equal(pattern_.innerIndexPtr(),
-                               pattern_.innerIndexPtr() + pattern_.nonZeros(),
-                               m->innerIndexPtr());
+  const bool same =
+      m->rows() == pattern_.rows() && m->cols() == pattern_.cols() &&
+      m->nonZeros() == pattern_.nonZeros() && m->isCompressed() &&
+      std::memcmp(pattern_.outerIndexPtr(), m->outerIndexPtr(),
+                  sizeof(int) * (pattern_.outerSize() + 1)) == 0 &&
+      std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
+                  sizeof(int) * pattern_.nonZeros()) == 0;
   if (!same) *m = pattern_;
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
 }

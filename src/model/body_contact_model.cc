@@ -75,6 +75,7 @@ BodyContactModel::BodyContactModel(std::shared_ptr<const ElasticBody> body,
     }
     pair_dofs_.push_back(dofs);
     if (!obstacles_[pair.obstacle]->is_curved()) continue;
+    curved_pairs_.push_back(static_cast<int>(p));
     for (int b = 0; b < dim; ++b) {
       const int col = map.dof(pair.node, b);
       if (col < 0) continue;
@@ -153,10 +154,8 @@ void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature
   const int dim = body_->dim();
   const std::vector<int>& slots = curvature_pattern_.slots();
   std::size_t next = 0;
-  for (int p = 0; p < num_pairs(); ++p) {
-    const Obstacle& obstacle = *obstacles_[pairs_[p].obstacle];
-    if (!obstacle.is_curved()) continue;
-    const PointMat hess = obstacle.Hessian(PairPosition(p, u));
+  for (int p : curved_pairs_) {
+    const PointMat hess = obstacles_[pairs_[p].obstacle]->Hessian(PairPosition(p, u));
     const std::array<int, 3>& dofs = pair_dofs_[p];
     for (int b = 0; b < dim; ++b) {
       if (dofs[b] < 0) continue;

@@ -53,6 +53,7 @@ class BodyContactModel final : public ContactModel {
   Vec load_;
   std::vector<Point> pair_reference_;          // X of each pair's node
   std::vector<std::array<int, 3>> pair_dofs_;  // its dofs, -1 where supported
+  std::vector<int> curved_pairs_;              // pairs on curved obstacles, in order
   ScatterPattern jacobian_pattern_;            // row p on the free dofs of pair p's node
   ScatterPattern curvature_pattern_;           // node blocks of pairs on curved obstacles
 };

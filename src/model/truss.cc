@@ -176,14 +176,14 @@ void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
   for (std::size_t k = 0; k < members_.size(); ++k) {
     const TrussMember& m = members_[k];
     const Kinematics kin = MemberKinematics(k, u);
-    const double length = kin.length;
-    const double reference = lengths_[k];
+    const double inv_length = 1.0 / kin.length;
+    const double inv_reference = 1.0 / lengths_[k];
     const double ea = m.youngs_modulus * m.area;
-    const double axial = ea * kin.elongation / reference;
+    const double axial = ea * kin.elongation * inv_reference;
     double e[3];
-    for (int c = 0; c < d; ++c) e[c] = kin.delta[c] / length;
-    const double geometric = axial / length;
-    const double material_minus_geometric = ea / reference - geometric;
+    for (int c = 0; c < d; ++c) e[c] = kin.delta[c] * inv_length;
+    const double geometric = axial * inv_length;
+    const double material_minus_geometric = ea * inv_reference - geometric;
     double block[3][3];
     for (int a = 0; a < d; ++a) {
       for (int b = 0; b < d; ++b) {

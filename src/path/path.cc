@@ -237,6 +237,8 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       attempt.attempt = cut;
       attempt.kind = ConstraintKind::kArcLength;
       attempt.arc_length = theta;
+      attempt.predicted_du = start.du;
+      attempt.predicted_dlambda = start.dlambda;
       attempt.result = formulation.Solve(problem, start, options.controls);
       ++summary.attempts;
       const StepPoint& point = attempt.result.point;
@@ -313,6 +315,8 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   StepAttempt attempt;
   attempt.step = 1;
   attempt.kind = ConstraintKind::kFixedLoad;
+  attempt.predicted_du = start.du;
+  attempt.predicted_dlambda = start.dlambda;
   attempt.result = formulation.Solve(problem, start, options.controls);
   attempt.verdict = Judge(problem, attempt.result.point, options.tolerance);
   attempt.accepted = attempt.verdict.verified;

@@ -33,6 +33,8 @@ struct StepAttempt {
   int attempt = 0;  // 0 first, then one per cut-back
   ConstraintKind kind = ConstraintKind::kArcLength;
   double arc_length = 0.0;  // theta used (arc-length steps)
+  Vec predicted_du;         // the predicted increment the warm start was given
+  double predicted_dlambda = 0.0;
   StepResult result;
   Verdict verdict;
   bool reversed = false;  // the answer turned back on the path (the guard rejected it)

@@ -1,0 +1,85 @@
+#include "path/replay.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace cb {
+
+void PathRecorder::OnAttempt(const StepAttempt& attempt) {
+  if (!attempt.accepted) return;
+  states.push_back(attempt.state);
+  increments.push_back(attempt.result.point);
+  StepPoint prediction;
+  prediction.du = attempt.predicted_du;
+  prediction.dlambda = attempt.predicted_dlambda;
+  predictions.push_back(prediction);
+  arc_lengths.push_back(attempt.arc_length);
+  kinds.push_back(attempt.kind);
+}
+
+PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, const State& initial,
+                       const PathRecorder& reference, Formulation& formulation,
+                       const PathOptions& options, PathObserver* observer) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
+  PathSummary summary;
+  summary.final_state = initial;
+  const int steps = static_cast<int>(reference.states.size());
+  const double w = options.lambda_weight;
+  std::any previous_backend;
+  for (int k = 1; k <= steps; ++k) {
+    const State& base = k == 1 ? initial : reference.states[k - 2];
+    const ConstraintKind kind = reference.kinds[k - 1];
+    StepConstraint constraint =
+        kind == ConstraintKind::kFixedLoad
+            ? StepConstraint::FixedLoad(base.lambda + reference.increments[k - 1].dlambda)
+            : StepConstraint::ArcLength(reference.arc_lengths[k - 1], w);
+    StepProblem problem{&model, base, constraint, scales};
+
+    StartPoint start;
+    start.kind = options.start;
+    start.r = base.r;
+    start.previous = previous_backend;
+    start.du = reference.predictions[k - 1].du;
+    start.dlambda = reference.predictions[k - 1].dlambda;
+
+    StepAttempt attempt;
+    attempt.step = k;
+    attempt.kind = kind;
+    attempt.arc_length = kind == ConstraintKind::kArcLength ? constraint.arc_length : 0.0;
+    attempt.result = formulation.Solve(problem, start, options.controls);
+    ++summary.attempts;
+    const StepPoint& point = attempt.result.point;
+    attempt.verdict = Judge(problem, point, options.tolerance);
+    // The reference direction decides "forward": the answer must not point against the
+    // reference step (the other root of (33)).
+    const StepPoint& ref = reference.increments[k - 1];
+    attempt.reversed = kind == ConstraintKind::kArcLength &&
+                       point.du.dot(ref.du) + w * w * point.dlambda * ref.dlambda <= 0.0;
+    attempt.accepted = attempt.verdict.verified && !attempt.reversed;
+    attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
+    Vec phi;
+    model.Gaps(attempt.state.u, &phi);
+    attempt.n_contact = CountContacts(problem, -phi, point.r);
+    if (observer != nullptr) observer->OnAttempt(attempt);
+    if (attempt.accepted) {
+      ++summary.accepted_steps;
+      summary.final_state = attempt.state;
+      previous_backend = attempt.result.backend_state;
+    } else {
+      previous_backend.reset();  // a failed step's backend state is no start for the next one
+    }
+    if (attempt.result.status == Status::kStoppedByCaller ||
+        (options.controls.interrupted && options.controls.interrupted())) {
+      summary.status = Status::kStoppedByCaller;
+      summary.message = "stopped by the caller at step " + std::to_string(k);
+      return summary;
+    }
+  }
+  summary.status = summary.accepted_steps == steps ? Status::kConverged : Status::kFailed;
+  summary.message = std::to_string(summary.accepted_steps) + " of " + std::to_string(steps) +
+                    " replayed steps verified";
+  return summary;
+}
+
+}  // namespace cb
