@@ -5,13 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/timer.h"
-
 namespace cb {
-
-double SmoothedFischerBurmeister(double a, double b, double rho) {
-  return std::sqrt(a * a + b * b + 2.0 * rho * rho) - (a + b);
-}
 
 // --- eta equation (32) ---------------------------------------------------------------------
 
@@ -107,65 +101,14 @@ bool ImplicitFbOptions::IsValid(std::string* why) const {
 
 // --- start points (METHOD.md section 4) ----------------------------------------------------
 
-namespace {
-
-// Makes (du, dlambda) satisfy the step constraint where that is a matter of the increment
-// alone: onto the arc-length sphere by scaling, or the prescribed load / displacement.
-void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda) {
-  const StepConstraint& c = step.constraint;
-  switch (c.kind) {
-    case ConstraintKind::kArcLength: {
-      const double w = c.lambda_weight;
-      const double norm = std::sqrt(du.squaredNorm() + w * w * (*dlambda) * (*dlambda));
-      if (norm > 0.0) {
-        du *= c.arc_length / norm;
-        *dlambda *= c.arc_length / norm;
-      } else if (w > 0.0) {
-        *dlambda = c.arc_length / w;  // no direction known: a pure load increment
-      }
-      break;
-    }
-    case ConstraintKind::kFixedLoad:
-      *dlambda = c.target - step.base.lambda;
-      break;
-    case ConstraintKind::kDisplacement:
-      du[c.index] = c.target - step.base.u[c.index];
-      break;
-    case ConstraintKind::kKink:
-      break;  // (53) involves g and r; nothing to fit in the increment
-  }
-}
-
-}  // namespace
-
 ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& start,
                                     const ImplicitFbOptions& options) {
-  const ContactModel& model = *step.model;
-  ImplicitFbLayout layout{model.num_dofs(), model.num_pairs()};
-  const double length = step.scales.length;
-  const double force = step.scales.force;
+  const ImplicitFbLayout layout{step.num_dofs(), step.num_pairs()};
   ImplicitFbStart out;
-  out.x = Vec::Zero(layout.size());
-  Eigen::Ref<Vec> du = out.x.segment(layout.du(), layout.d);
-  auto g = out.x.segment(layout.g(), layout.nc);
-  auto r = out.x.segment(layout.r(), layout.nc);
-  double dlambda = 0.0;
-
-  if (start.kind == StartKind::kWarm) {
-    du = start.du;                                 // (38)
-    dlambda = start.dlambda;                       // (41)
-    FitIncrementToConstraint(step, du, &dlambda);  // (33) holds exactly
-    r = start.r / force;                           // (40)
-    Vec phi;
-    model.Gaps(step.base.u + du, &phi);
-    g = -phi / length;  // (39): (30) holds exactly
-  } else {
-    FitIncrementToConstraint(step, du, &dlambda);  // du0 = 0
-    g.setConstant(-1.0);
-    r.setConstant(1.0);
-  }
-  out.x[layout.dlambda()] = dlambda;
-
+  // (38)-(41) warm, or the cold start of section 5.1: shared with the nonsmooth formulations.
+  out.x = MakeStepEquationStart(step, start, layout.size());
+  const auto g = out.x.segment(layout.g(), layout.nc);
+  const auto r = out.x.segment(layout.r(), layout.nc);
   if (options.eta == EtaCase::kNonsmooth) {
     out.x[layout.rho()] = 0.0;
     return out;
@@ -182,25 +125,11 @@ ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& s
 
 // --- the system ------------------------------------------------------------------------------
 
-struct ImplicitFbSystem::PatternCache {
-  const ContactModel* model = nullptr;
-  ConstraintKind kind = ConstraintKind::kArcLength;
-  int index = -1;
-  long nnz_stiffness = -1;
-  long nnz_curvature = -1;
-  long nnz_gap = -1;
-  std::vector<int> load_rows;  // rows where f != 0
-  ScatterPattern pattern;
-  std::size_t first_stiffness = 0, first_curvature = 0, first_gap_t = 0, first_rest = 0;
-  std::size_t first_gap = 0;
-};
-
 ImplicitFbSystem::ImplicitFbSystem(const StepProblem& step, EtaEquation eta,
                                    std::shared_ptr<PatternCache> cache)
-    : step_(step),
+    : StepEquationSystem(step, /*has_rho=*/true, std::move(cache)),
       eta_(eta),
-      layout_{step.num_dofs(), step.num_pairs()},
-      cache_(cache ? std::move(cache) : std::make_shared<PatternCache>()) {
+      layout_{step.num_dofs(), step.num_pairs()} {
   if (layout_.nc == 0 && eta_.eta != EtaCase::kNonsmooth) {
     // With no contact pairs (32) has no complementarity term; rho = 0 is its only sensible
     // value, which the nonsmooth row F4 = rho states.
@@ -210,182 +139,48 @@ ImplicitFbSystem::ImplicitFbSystem(const StepProblem& step, EtaEquation eta,
 
 ImplicitFbSystem::~ImplicitFbSystem() = default;
 
-bool ImplicitFbSystem::Residual(const Vec& x, Vec* residual) {
-  const ContactModel& model = *step_.model;
-  const ImplicitFbLayout& l = layout_;
-  const double length = step_.scales.length;
-  const double force = step_.scales.force;
-  const auto du = x.segment(l.du(), l.d);
-  const auto g = x.segment(l.g(), l.nc);
-  const auto r = x.segment(l.r(), l.nc);
-  const double dlambda = x[l.dlambda()];
-  const double rho = x[l.rho()];
-  u_ = step_.base.u + du;
-  model.InternalForce(u_, &internal_);
-  model.Gaps(u_, &phi_);
-  model.GapJacobian(u_, &gap_jacobian_);
-
-  residual->resize(l.size());
-  const double lambda = step_.base.lambda + dlambda;
-  residual->segment(0, l.d) = (internal_ - lambda * model.load_pattern()) / force -
-                              gap_jacobian_.transpose() * r;  // (29) / R
-  residual->segment(l.d, l.nc) = g + phi_ / length;           // (30) / L
-  for (int p = 0; p < l.nc; ++p) {
-    (*residual)[l.d + l.nc + p] = SmoothedFischerBurmeister(g[p], -r[p], rho);  // (31)
-  }
-  if (step_.constraint.kind == ConstraintKind::kKink) {
-    // With (53), g^ = r^, psi_p^ = sqrt(2 (g^2 + rho^2)): a cone whose apex is the kink, where
-    // Newton stagnates. On (53) psi_p^ = 0 is equivalent to g^ = r^ = 0, stated smoothly here
-    // as g^ + r^ = 0; the solution set is unchanged and the Jacobian stays regular.
-    const int p = step_.constraint.index;
-    (*residual)[l.d + l.nc + p] = g[p] + r[p];
-  }
-  const double m = l.nc > 0 ? g.dot(r) / l.nc : 0.0;
-  (*residual)[l.d + 2 * l.nc] = eta_.Value(m, rho);  // (32) / nc
-  (*residual)[l.d + 2 * l.nc + 1] =
-      StepConstraintValue(step_, du, dlambda, length * g, force * r);  // (33) etc.
-  return residual->allFinite();
+double ImplicitFbSystem::Complementarity(double a, double b, double rho) const {
+  return SmoothedFischerBurmeister(a, b, rho);  // (31)
 }
 
-void ImplicitFbSystem::Jacobian(const Vec& x, SpMat* jacobian) {
-  const ContactModel& model = *step_.model;
+void ImplicitFbSystem::ComplementarityElement(double a, double b, double rho, double* d_a,
+                                              double* d_b, double* d_rho) const {
+  // d/da = a/s - 1, d/db = b/s - 1, d/drho = 2 rho / s; at s = 0 (only with rho = 0 at
+  // a = b = 0) the element of the nonsmooth FB function (FischerBurmeisterElement).
+  FischerBurmeisterElement(a, b, rho, d_a, d_b, d_rho);
+}
+
+double ImplicitFbSystem::ExtraRow(const Vec& x) const {
   const ImplicitFbLayout& l = layout_;
-  const double length = step_.scales.length;
-  const double force = step_.scales.force;
-  const auto du = x.segment(l.du(), l.d);
-  const auto g = x.segment(l.g(), l.nc);
-  const auto r = x.segment(l.r(), l.nc);
-  const double dlambda = x[l.dlambda()];
-  const double rho = x[l.rho()];
-  u_ = step_.base.u + du;
-  model.Stiffness(u_, &stiffness_);
-  model.GapJacobian(u_, &gap_jacobian_);
-  model.GapCurvature(u_, force * r, &curvature_);
+  const double m = l.nc > 0 ? x.segment(l.g(), l.nc).dot(x.segment(l.r(), l.nc)) / l.nc : 0.0;
+  return eta_.Value(m, x[l.rho()]);  // (32) / nc
+}
 
-  const int row3 = l.d + l.nc;
+void ImplicitFbSystem::AppendExtraRowEntries(std::vector<ScatterPattern::Entry>* e) const {
+  const ImplicitFbLayout& l = layout_;
   const int row4 = l.d + 2 * l.nc;
-  const int row5 = row4 + 1;
-  const StepConstraint& c = step_.constraint;
-  PatternCache& cache = *cache_;
-  if (cache.model != &model || cache.kind != c.kind || cache.index != c.index ||
-      cache.nnz_stiffness != stiffness_.nonZeros() ||
-      cache.nnz_curvature != curvature_.nonZeros() || cache.nnz_gap != gap_jacobian_.nonZeros()) {
-    // Entries in the order the fill below adds them.
-    std::vector<ScatterPattern::Entry> e;
-    cache.first_stiffness = e.size();
-    AppendBlockEntries(stiffness_, 0, 0, false, &e);
-    cache.first_curvature = e.size();
-    AppendBlockEntries(curvature_, 0, 0, false, &e);
-    cache.first_gap_t = e.size();
-    AppendBlockEntries(gap_jacobian_, 0, l.r(), true, &e);
-    cache.first_gap = e.size();
-    AppendBlockEntries(gap_jacobian_, l.d, 0, false, &e);
-    cache.first_rest = e.size();
-    cache.load_rows.clear();
-    const Vec& f = model.load_pattern();
-    for (int i = 0; i < l.d; ++i) {
-      if (f[i] != 0.0) cache.load_rows.push_back(i);
-    }
-    for (int i : cache.load_rows) e.emplace_back(i, l.dlambda());
-    for (int p = 0; p < l.nc; ++p) e.emplace_back(l.d + p, l.g() + p);
-    for (int p = 0; p < l.nc; ++p) {
-      e.emplace_back(row3 + p, l.g() + p);
-      e.emplace_back(row3 + p, l.r() + p);
-      e.emplace_back(row3 + p, l.rho());
-    }
-    for (int p = 0; p < l.nc; ++p) {
-      e.emplace_back(row4, l.g() + p);
-      e.emplace_back(row4, l.r() + p);
-    }
-    e.emplace_back(row4, l.rho());
-    switch (c.kind) {
-      case ConstraintKind::kArcLength:
-        for (int j = 0; j < l.d; ++j) e.emplace_back(row5, j);
-        e.emplace_back(row5, l.dlambda());
-        break;
-      case ConstraintKind::kFixedLoad:
-        e.emplace_back(row5, l.dlambda());
-        break;
-      case ConstraintKind::kDisplacement:
-        e.emplace_back(row5, c.index);
-        break;
-      case ConstraintKind::kKink:
-        e.emplace_back(row5, l.g() + c.index);
-        e.emplace_back(row5, l.r() + c.index);
-        break;
-    }
-    cache.pattern = ScatterPattern(l.size(), l.size(), e);
-    cache.model = &model;
-    cache.kind = c.kind;
-    cache.index = c.index;
-    cache.nnz_stiffness = stiffness_.nonZeros();
-    cache.nnz_curvature = curvature_.nonZeros();
-    cache.nnz_gap = gap_jacobian_.nonZeros();
-  }
-
-  const std::vector<int>& slots = cache.pattern.slots();
-  cache.pattern.Reset(jacobian);
-  // dF1/ddu = (hess pi - sum_p r_p hess phi_p) / R, dF1/dr^ = -grad phi^T.
-  ScatterBlock(stiffness_, 1.0 / force, slots, cache.first_stiffness, jacobian);
-  ScatterBlock(curvature_, -1.0 / force, slots, cache.first_curvature, jacobian);
-  ScatterBlock(gap_jacobian_, -1.0, slots, cache.first_gap_t, jacobian);
-  // dF2/ddu = grad phi / L.
-  ScatterBlock(gap_jacobian_, 1.0 / length, slots, cache.first_gap, jacobian);
-  double* v = jacobian->valuePtr();
-  std::size_t k = cache.first_rest;
-  const Vec& f = model.load_pattern();
-  for (int i : cache.load_rows) v[slots[k++]] += -f[i] / force;  // dF1/ddlambda
-  for (int p = 0; p < l.nc; ++p) v[slots[k++]] += 1.0;           // dF2/dg^
-  const int kink_pair = c.kind == ConstraintKind::kKink ? c.index : -1;
   for (int p = 0; p < l.nc; ++p) {
-    if (p == kink_pair) {  // the row g^ + r^ of the kink pair (see Residual)
-      v[slots[k++]] += 1.0;
-      v[slots[k++]] += 1.0;
-      ++k;
-      continue;
-    }
-    // psi(a, b, rho) with a = g^, b = -r^: d/da = a/s - 1, d/db = b/s - 1, d/drho = 2 rho / s.
-    // At s = 0 (only with rho = 0 at a = b = 0) take the element (a/s, b/s) -> (1/sqrt2,
-    // 1/sqrt2) of the generalised Jacobian, as for the nonsmooth FB function.
-    const double a = g[p];
-    const double b = -r[p];
-    const double s = std::sqrt(a * a + b * b + 2.0 * rho * rho);
-    const double da = s > 0.0 ? a / s - 1.0 : M_SQRT1_2 - 1.0;
-    const double db = s > 0.0 ? b / s - 1.0 : M_SQRT1_2 - 1.0;
-    v[slots[k++]] += da;                             // dF3/dg^
-    v[slots[k++]] += -db;                            // dF3/dr^ (b = -r^)
-    v[slots[k++]] += s > 0.0 ? 2.0 * rho / s : 0.0;  // dF3/drho
+    e->emplace_back(row4, l.g() + p);
+    e->emplace_back(row4, l.r() + p);
   }
+  e->emplace_back(row4, l.rho());
+}
+
+void ImplicitFbSystem::FillExtraRow(const Vec& x, Cursor* cursor) const {
+  const ImplicitFbLayout& l = layout_;
+  const double rho = x[l.rho()];
   const double dm = l.nc > 0 ? eta_.DerivativeMean(rho) / l.nc : 0.0;
   for (int p = 0; p < l.nc; ++p) {
-    v[slots[k++]] += dm * r[p];  // dF4/dg^ = eta'_m r^ / nc
-    v[slots[k++]] += dm * g[p];  // dF4/dr^ = eta'_m g^ / nc
+    cursor->Add(dm * x[l.r() + p]);  // dF4/dg^ = eta'_m r^ / nc
+    cursor->Add(dm * x[l.g() + p]);  // dF4/dr^ = eta'_m g^ / nc
   }
-  v[slots[k++]] += eta_.DerivativeRho(rho);
-  switch (c.kind) {
-    case ConstraintKind::kArcLength: {
-      const double t2 = c.arc_length * c.arc_length;
-      for (int j = 0; j < l.d; ++j) v[slots[k++]] += 2.0 * du[j] / t2;
-      v[slots[k++]] += 2.0 * c.lambda_weight * c.lambda_weight * dlambda / t2;
-      break;
-    }
-    case ConstraintKind::kFixedLoad:
-      v[slots[k++]] += 1.0;
-      break;
-    case ConstraintKind::kDisplacement:
-      v[slots[k++]] += 1.0 / length;
-      break;
-    case ConstraintKind::kKink:
-      v[slots[k++]] += 1.0;
-      v[slots[k++]] += -1.0;
-      break;
-  }
+  cursor->Add(eta_.DerivativeRho(rho));
 }
 
 // --- the formulation ---------------------------------------------------------------------------
 
 ImplicitFb::ImplicitFb(ImplicitFbOptions options)
-    : options_(std::move(options)), cache_(std::make_shared<ImplicitFbSystem::PatternCache>()) {
+    : options_(std::move(options)), cache_(ImplicitFbSystem::MakePatternCache()) {
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument("implicit-fb options: " + why);
   solver_ = MakeEquationSolver(options_.solver, options_.solver_options);
@@ -409,37 +204,10 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
   const ImplicitFbLayout& l = system.layout();
   Vec x = initial.x;
 
-  Stopwatch clock;
-  auto observe = [&](const IterationInfo& info) {
-    IterationRecord record;
-    record.iteration = info.iteration;
-    record.merit = info.merit;
-    record.residual_inf = info.residual_inf;
-    record.step_length = info.step_length;
-    double comp = 0.0;
-    for (int p = 0; p < l.nc; ++p) {
-      comp = std::max(comp, std::abs(std::min((*info.x)[l.g() + p], -(*info.x)[l.r() + p])));
-    }
-    record.comp_res = comp;
-    result->history.push_back(record);
-    if (controls.interrupted && controls.interrupted()) return false;
-    if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) return false;
-    return true;
-  };
-  const SolverSummary summary = solver_->Solve(system, &x, observe);
-
-  result->status = summary.status;
-  result->message = summary.message;
-  result->counts = {summary.iterations, summary.residual_evals, summary.jacobian_evals,
-                    summary.linear_solves};
-  result->point.du = x.segment(l.du(), l.d);
-  result->point.g = step.scales.length * x.segment(l.g(), l.nc);
-  result->point.r = step.scales.force * x.segment(l.r(), l.nc);
-  result->point.dlambda = x[l.dlambda()];
+  RunStepEquationSolver(*solver_, system, &x, controls, result);
   result->details["gamma"] = std::to_string(initial.gamma);
   result->details["rho0"] = std::to_string(initial.x[l.rho()]);
   result->details["rho"] = std::to_string(x[l.rho()]);
-  result->details["final_merit"] = std::to_string(summary.final_merit);
 }
 
 }  // namespace cb

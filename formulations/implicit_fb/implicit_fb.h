@@ -7,18 +7,21 @@
 //   F1 = (grad pi(u) - lambda f) / R - grad phi(u)^T r^               (29) / R,   d rows
 //   F2 = g^ + phi(u) / L                                               (30) / L,   nc rows
 //   F3_p = psi(g^_p, -r^_p, rho)                                       (31),       nc rows
-//          (for the pair of a kink step, g^_p + r^_p: see ImplicitFbSystem::Residual)
+//          (for the pair of a kink step, g^_p + r^_p: see StepEquationSystem::Residual)
 //   F4 = eta equation (32) divided by nc (EtaEquation),                           1 row
 //   F5 = step constraint c (StepConstraintValue; (33) / theta^2 - 1 for arc length), 1 row.
 // Multiplying rows by constants changes neither the solution nor Newton's iterates, but the
 // merit 1/2 ||F||^2 and the solvers' stopping test are then balanced between rows.
+//
+// F1, F2, F5, the Jacobian assembly and the start of the contact unknowns are shared with the
+// nonsmooth formulations (step_equations.h); this file adds rho, psi (31) and the eta row (32).
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "core/sparse.h"
+#include "formulations/implicit_fb/step_equations.h"
 #include "solvers/equation_solver.h"
 #include "step/formulation.h"
 
@@ -26,9 +29,6 @@ namespace cb {
 
 // The eta cases of METHOD.md section 2 (the report's section 5.1).
 enum class EtaCase { kCase1 = 1, kCase2 = 2, kCase3 = 3, kNonsmooth = 4 };
-
-// psi(a, b, rho) = sqrt(a^2 + b^2 + 2 rho^2) - (a + b), (12).
-double SmoothedFischerBurmeister(double a, double b, double rho);
 
 // The eta equation (32) divided by nc, in terms of the mean m = g^T r^ / nc (<= 0 at a
 // solution) and rho:
@@ -89,31 +89,32 @@ ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& s
                                     const ImplicitFbOptions& options);
 
 // The square system (29)-(33) for one step.
-class ImplicitFbSystem final : public EquationSystem {
+class ImplicitFbSystem final : public StepEquationSystem {
  public:
-  // The Jacobian pattern, built on first use and reusable by later systems of the same model,
-  // constraint kind and index (a path analyses it once).
-  struct PatternCache;
+  // The Jacobian pattern (StepEquationSystem::PatternCache), built on first use and reusable by
+  // later systems of the same model, constraint kind and index (a path analyses it once).
+  using PatternCache = StepEquationSystem::PatternCache;
 
   ImplicitFbSystem(const StepProblem& step, EtaEquation eta,
                    std::shared_ptr<PatternCache> cache = nullptr);
   ~ImplicitFbSystem() override;
 
-  int size() const override { return layout_.size(); }
-  bool Residual(const Vec& x, Vec* residual) override;
-  void Jacobian(const Vec& x, SpMat* jacobian) override;
-
   const ImplicitFbLayout& layout() const { return layout_; }
   const EtaEquation& eta() const { return eta_; }
 
  private:
-  const StepProblem& step_;
+  // (31): psi(g^_p, -r^_p, rho), with the generalised-Jacobian element of
+  // FischerBurmeisterElement where it is not differentiable (rho = 0, case 4).
+  double Complementarity(double a, double b, double rho) const override;
+  void ComplementarityElement(double a, double b, double rho, double* d_a, double* d_b,
+                              double* d_rho) const override;
+  // (32) / nc.
+  double ExtraRow(const Vec& x) const override;
+  void AppendExtraRowEntries(std::vector<ScatterPattern::Entry>* entries) const override;
+  void FillExtraRow(const Vec& x, Cursor* cursor) const override;
+
   EtaEquation eta_;
   ImplicitFbLayout layout_;
-  std::shared_ptr<PatternCache> cache_;
-  // Work storage reused across evaluations.
-  Vec u_, internal_, phi_, reaction_;
-  SpMat stiffness_, curvature_, gap_jacobian_;
 };
 
 class ImplicitFb final : public Formulation {

@@ -1,0 +1,303 @@
+#include "formulations/implicit_fb/step_equations.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/timer.h"
+
+namespace cb {
+
+double SmoothedFischerBurmeister(double a, double b, double rho) {
+  return std::sqrt(a * a + b * b + 2.0 * rho * rho) - (a + b);
+}
+
+void FischerBurmeisterElement(double a, double b, double rho, double* d_a, double* d_b,
+                              double* d_rho) {
+  const double s = std::sqrt(a * a + b * b + 2.0 * rho * rho);
+  if (s > 0.0) {
+    *d_a = a / s - 1.0;
+    *d_b = b / s - 1.0;
+    *d_rho = 2.0 * rho / s;
+  } else {
+    // The limit along (a, b) = t (1, 1), t -> 0+ (see the header).
+    *d_a = M_SQRT1_2 - 1.0;
+    *d_b = M_SQRT1_2 - 1.0;
+    *d_rho = 0.0;
+  }
+}
+
+void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda) {
+  const StepConstraint& c = step.constraint;
+  switch (c.kind) {
+    case ConstraintKind::kArcLength: {
+      const double w = c.lambda_weight;
+      const double norm = std::sqrt(du.squaredNorm() + w * w * (*dlambda) * (*dlambda));
+      if (norm > 0.0) {
+        du *= c.arc_length / norm;
+        *dlambda *= c.arc_length / norm;
+      } else if (w > 0.0) {
+        *dlambda = c.arc_length / w;  // no direction known: a pure load increment
+      }
+      break;
+    }
+    case ConstraintKind::kFixedLoad:
+      *dlambda = c.target - step.base.lambda;
+      break;
+    case ConstraintKind::kDisplacement:
+      du[c.index] = c.target - step.base.u[c.index];
+      break;
+    case ConstraintKind::kKink:
+      break;  // (53) involves g and r; nothing to fit in the increment
+  }
+}
+
+Vec MakeStepEquationStart(const StepProblem& step, const StartPoint& start, int size) {
+  const ContactModel& model = *step.model;
+  const StepEquationLayout layout{model.num_dofs(), model.num_pairs(), false};
+  Vec x = Vec::Zero(size);
+  Eigen::Ref<Vec> du = x.segment(layout.du(), layout.d);
+  auto g = x.segment(layout.g(), layout.nc);
+  auto r = x.segment(layout.r(), layout.nc);
+  double dlambda = 0.0;
+  if (start.kind == StartKind::kWarm) {
+    du = start.du;                                 // (38)
+    dlambda = start.dlambda;                       // (41)
+    FitIncrementToConstraint(step, du, &dlambda);  // (33) holds exactly
+    r = start.r / step.scales.force;               // (40)
+    Vec phi;
+    model.Gaps(step.base.u + du, &phi);
+    g = -phi / step.scales.length;  // (39): (30) holds exactly
+  } else {
+    FitIncrementToConstraint(step, du, &dlambda);  // du0 = 0
+    g.setConstant(-1.0);
+    r.setConstant(1.0);
+  }
+  x[layout.dlambda()] = dlambda;
+  return x;
+}
+
+// --- the system ------------------------------------------------------------------------------
+
+struct StepEquationSystem::PatternCache {
+  const ContactModel* model = nullptr;
+  ConstraintKind kind = ConstraintKind::kArcLength;
+  int index = -1;
+  bool has_rho = false;
+  long nnz_stiffness = -1;
+  long nnz_curvature = -1;
+  long nnz_gap = -1;
+  std::vector<int> load_rows;  // rows where f != 0
+  ScatterPattern pattern;
+  std::size_t first_stiffness = 0, first_curvature = 0, first_gap_t = 0, first_rest = 0;
+  std::size_t first_gap = 0;
+};
+
+std::shared_ptr<StepEquationSystem::PatternCache> StepEquationSystem::MakePatternCache() {
+  return std::make_shared<PatternCache>();
+}
+
+StepEquationSystem::StepEquationSystem(const StepProblem& step, bool has_rho,
+                                       std::shared_ptr<PatternCache> cache)
+    : step_(step),
+      layout_{step.num_dofs(), step.num_pairs(), has_rho},
+      cache_(cache ? std::move(cache) : std::make_shared<PatternCache>()) {}
+
+StepEquationSystem::~StepEquationSystem() = default;
+
+bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
+  const ContactModel& model = *step_.model;
+  const StepEquationLayout& l = layout_;
+  const double length = step_.scales.length;
+  const double force = step_.scales.force;
+  const auto du = x.segment(l.du(), l.d);
+  const auto g = x.segment(l.g(), l.nc);
+  const auto r = x.segment(l.r(), l.nc);
+  const double dlambda = x[l.dlambda()];
+  const double rho = l.has_rho ? x[l.rho()] : 0.0;
+  u_ = step_.base.u + du;
+  model.InternalForce(u_, &internal_);
+  model.Gaps(u_, &phi_);
+  model.GapJacobian(u_, &gap_jacobian_);
+
+  residual->resize(l.size());
+  const double lambda = step_.base.lambda + dlambda;
+  residual->segment(0, l.d) = (internal_ - lambda * model.load_pattern()) / force -
+                              gap_jacobian_.transpose() * r;  // (29) / R
+  residual->segment(l.d, l.nc) = g + phi_ / length;           // (30) / L
+  const int row3 = l.complementarity_row();
+  for (int p = 0; p < l.nc; ++p) (*residual)[row3 + p] = Complementarity(g[p], -r[p], rho);
+  if (step_.constraint.kind == ConstraintKind::kKink) {
+    // With (53), g^ = r^, every complementarity function used here is a cone in g^ on that
+    // line (sqrt(2 (g^2 + rho^2)) for psi, -|g^| for min) whose apex is the kink, where Newton
+    // stagnates. On (53) C = 0 is equivalent to g^ = r^ = 0, stated smoothly here as
+    // g^ + r^ = 0; the solution set is unchanged and the Jacobian stays regular.
+    const int p = step_.constraint.index;
+    (*residual)[row3 + p] = g[p] + r[p];
+  }
+  if (l.has_rho) (*residual)[l.extra_row()] = ExtraRow(x);
+  (*residual)[l.constraint_row()] =
+      StepConstraintValue(step_, du, dlambda, length * g, force * r);  // (33) etc.
+  return residual->allFinite();
+}
+
+void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
+  const ContactModel& model = *step_.model;
+  const StepEquationLayout& l = layout_;
+  const double length = step_.scales.length;
+  const double force = step_.scales.force;
+  const auto du = x.segment(l.du(), l.d);
+  const auto g = x.segment(l.g(), l.nc);
+  const auto r = x.segment(l.r(), l.nc);
+  const double dlambda = x[l.dlambda()];
+  const double rho = l.has_rho ? x[l.rho()] : 0.0;
+  u_ = step_.base.u + du;
+  model.Stiffness(u_, &stiffness_);
+  model.GapJacobian(u_, &gap_jacobian_);
+  model.GapCurvature(u_, force * r, &curvature_);
+
+  const int row3 = l.complementarity_row();
+  const int row5 = l.constraint_row();
+  const StepConstraint& c = step_.constraint;
+  PatternCache& cache = *cache_;
+  if (cache.model != &model || cache.kind != c.kind || cache.index != c.index ||
+      cache.has_rho != l.has_rho || cache.nnz_stiffness != stiffness_.nonZeros() ||
+      cache.nnz_curvature != curvature_.nonZeros() || cache.nnz_gap != gap_jacobian_.nonZeros()) {
+    // Entries in the order the fill below adds them.
+    std::vector<ScatterPattern::Entry> e;
+    cache.first_stiffness = e.size();
+    AppendBlockEntries(stiffness_, 0, 0, false, &e);
+    cache.first_curvature = e.size();
+    AppendBlockEntries(curvature_, 0, 0, false, &e);
+    cache.first_gap_t = e.size();
+    AppendBlockEntries(gap_jacobian_, 0, l.r(), true, &e);
+    cache.first_gap = e.size();
+    AppendBlockEntries(gap_jacobian_, l.d, 0, false, &e);
+    cache.first_rest = e.size();
+    cache.load_rows.clear();
+    const Vec& f = model.load_pattern();
+    for (int i = 0; i < l.d; ++i) {
+      if (f[i] != 0.0) cache.load_rows.push_back(i);
+    }
+    for (int i : cache.load_rows) e.emplace_back(i, l.dlambda());
+    for (int p = 0; p < l.nc; ++p) e.emplace_back(l.d + p, l.g() + p);
+    for (int p = 0; p < l.nc; ++p) {
+      e.emplace_back(row3 + p, l.g() + p);
+      e.emplace_back(row3 + p, l.r() + p);
+      if (l.has_rho) e.emplace_back(row3 + p, l.rho());
+    }
+    if (l.has_rho) AppendExtraRowEntries(&e);
+    switch (c.kind) {
+      case ConstraintKind::kArcLength:
+        for (int j = 0; j < l.d; ++j) e.emplace_back(row5, j);
+        e.emplace_back(row5, l.dlambda());
+        break;
+      case ConstraintKind::kFixedLoad:
+        e.emplace_back(row5, l.dlambda());
+        break;
+      case ConstraintKind::kDisplacement:
+        e.emplace_back(row5, c.index);
+        break;
+      case ConstraintKind::kKink:
+        e.emplace_back(row5, l.g() + c.index);
+        e.emplace_back(row5, l.r() + c.index);
+        break;
+    }
+    cache.pattern = ScatterPattern(l.size(), l.size(), e);
+    cache.model = &model;
+    cache.kind = c.kind;
+    cache.index = c.index;
+    cache.has_rho = l.has_rho;
+    cache.nnz_stiffness = stiffness_.nonZeros();
+    cache.nnz_curvature = curvature_.nonZeros();
+    cache.nnz_gap = gap_jacobian_.nonZeros();
+  }
+
+  const std::vector<int>& slots = cache.pattern.slots();
+  cache.pattern.Reset(jacobian);
+  // dF1/ddu = (hess pi - sum_p r_p hess phi_p) / R, dF1/dr^ = -grad phi^T.
+  ScatterBlock(stiffness_, 1.0 / force, slots, cache.first_stiffness, jacobian);
+  ScatterBlock(curvature_, -1.0 / force, slots, cache.first_curvature, jacobian);
+  ScatterBlock(gap_jacobian_, -1.0, slots, cache.first_gap_t, jacobian);
+  // dF2/ddu = grad phi / L.
+  ScatterBlock(gap_jacobian_, 1.0 / length, slots, cache.first_gap, jacobian);
+  Cursor cursor{jacobian->valuePtr(), slots.data(), cache.first_rest};
+  const Vec& f = model.load_pattern();
+  for (int i : cache.load_rows) cursor.Add(-f[i] / force);  // dF1/ddlambda
+  for (int p = 0; p < l.nc; ++p) cursor.Add(1.0);           // dF2/dg^
+  const int kink_pair = c.kind == ConstraintKind::kKink ? c.index : -1;
+  for (int p = 0; p < l.nc; ++p) {
+    if (p == kink_pair) {  // the row g^ + r^ of the kink pair (see Residual)
+      cursor.Add(1.0);
+      cursor.Add(1.0);
+      if (l.has_rho) cursor.Skip();
+      continue;
+    }
+    // C(a, b, rho) with a = g^, b = -r^.
+    double d_a = 0.0, d_b = 0.0, d_rho = 0.0;
+    ComplementarityElement(g[p], -r[p], rho, &d_a, &d_b, &d_rho);
+    cursor.Add(d_a);   // dF3/dg^
+    cursor.Add(-d_b);  // dF3/dr^ (b = -r^)
+    if (l.has_rho) cursor.Add(d_rho);
+  }
+  if (l.has_rho) FillExtraRow(x, &cursor);
+  switch (c.kind) {
+    case ConstraintKind::kArcLength: {
+      const double t2 = c.arc_length * c.arc_length;
+      for (int j = 0; j < l.d; ++j) cursor.Add(2.0 * du[j] / t2);
+      cursor.Add(2.0 * c.lambda_weight * c.lambda_weight * dlambda / t2);
+      break;
+    }
+    case ConstraintKind::kFixedLoad:
+      cursor.Add(1.0);
+      break;
+    case ConstraintKind::kDisplacement:
+      cursor.Add(1.0 / length);
+      break;
+    case ConstraintKind::kKink:
+      cursor.Add(1.0);
+      cursor.Add(-1.0);
+      break;
+  }
+}
+
+// --- a solve ---------------------------------------------------------------------------------
+
+SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
+                                    const SolveControls& controls, StepResult* result,
+                                    const std::function<void(const Vec&)>& on_iteration) {
+  const StepEquationLayout& l = system.step_layout();
+  const StepProblem& step = system.step();
+  Stopwatch clock;
+  auto observe = [&](const IterationInfo& info) {
+    IterationRecord record;
+    record.iteration = info.iteration;
+    record.merit = info.merit;
+    record.residual_inf = info.residual_inf;
+    record.step_length = info.step_length;
+    double comp = 0.0;
+    for (int p = 0; p < l.nc; ++p) {
+      comp = std::max(comp, std::abs(std::min((*info.x)[l.g() + p], -(*info.x)[l.r() + p])));
+    }
+    record.comp_res = comp;
+    result->history.push_back(record);
+    if (on_iteration) on_iteration(*info.x);
+    if (controls.interrupted && controls.interrupted()) return false;
+    if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) return false;
+    return true;
+  };
+  const SolverSummary summary = solver.Solve(system, x, observe);
+
+  result->status = summary.status;
+  result->message = summary.message;
+  result->counts = {summary.iterations, summary.residual_evals, summary.jacobian_evals,
+                    summary.linear_solves};
+  result->point.du = x->segment(l.du(), l.d);
+  result->point.g = step.scales.length * x->segment(l.g(), l.nc);
+  result->point.r = step.scales.force * x->segment(l.r(), l.nc);
+  result->point.dlambda = (*x)[l.dlambda()];
+  result->details["final_merit"] = std::to_string(summary.final_merit);
+  return summary;
+}
+
+}  // namespace cb

@@ -1,0 +1,126 @@
+// What the equation formulations of a step (implicit-fb, nonsmooth-fb, active-set) share: the
+// scaled unknowns, the rows (29) / R, (30) / L and the step constraint (33) (or its
+// replacements), their Jacobian blocks assembled through one cached ScatterPattern, the start
+// points of METHOD.md section 4, and the bookkeeping of a solve. Each formulation adds only its
+// complementarity rows (and, for implicit-fb, the smoothing unknown rho with its row (32)).
+//
+// Unknowns x = (du, g^, r^, dlambda[, rho]) with g^ = g / L, r^ = r / R; rows
+//   F1 = (grad pi(u) - lambda f) / R - grad phi(u)^T r^       (29) / R,   d rows
+//   F2 = g^ + phi(u) / L                                        (30) / L,   nc rows
+//   F3_p = C(g^_p, -r^_p[, rho])                                (31) or its nonsmooth variant
+//          (for the pair of a kink step, g^_p + r^_p: see StepEquationSystem::Residual)
+//  [F4 = the formulation's extra row (implicit-fb: (32) / nc)]
+//   F5 = step constraint c (StepConstraintValue)                (33) etc., 1 row.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/sparse.h"
+#include "solvers/equation_solver.h"
+#include "step/formulation.h"
+
+namespace cb {
+
+// Positions of the unknowns and rows. `has_rho` adds the unknown rho after dlambda and one row
+// (the formulation's own) between the complementarity rows and the step-constraint row.
+struct StepEquationLayout {
+  int d = 0;
+  int nc = 0;
+  bool has_rho = false;
+  int du() const { return 0; }
+  int g() const { return d; }
+  int r() const { return d + nc; }
+  int dlambda() const { return d + 2 * nc; }
+  int rho() const { return d + 2 * nc + 1; }  // only when has_rho
+  int complementarity_row() const { return d + nc; }
+  int extra_row() const { return d + 2 * nc; }  // only when has_rho
+  int constraint_row() const { return size() - 1; }
+  int size() const { return d + 2 * nc + 1 + (has_rho ? 1 : 0); }
+};
+
+// psi(a, b, rho) = sqrt(a^2 + b^2 + 2 rho^2) - (a + b), (12); rho = 0 is the plain
+// Fischer-Burmeister function.
+double SmoothedFischerBurmeister(double a, double b, double rho);
+
+// An element of the generalised Jacobian of psi at (a, b, rho): the gradient where
+// s = sqrt(a^2 + b^2 + 2 rho^2) > 0, and at s = 0 (a = b = rho = 0) the element
+// (1/sqrt2 - 1, 1/sqrt2 - 1, 0). That is the limit of the gradient along a = b = t -> 0+,
+// hence an element of the B-subdifferential (the construction of De Luca, Facchinei and
+// Kanzow, Math. Prog. 75 (1996), with the direction z = e_g - e_r on the degenerate pair,
+// i.e. (a, b) moving along (1, 1)); the Clarke Jacobian there is the disc
+// {(xi - 1, eta - 1) : xi^2 + eta^2 <= 1}, and this element keeps both partials negative,
+// so the row stays a regular combination of the "gap" and "reaction" equations.
+void FischerBurmeisterElement(double a, double b, double rho, double* d_a, double* d_b,
+                              double* d_rho);
+
+// Moves (du, dlambda) onto the step constraint where that is a matter of the increment alone:
+// onto the arc-length sphere by scaling, or to the prescribed load / displacement.
+void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda);
+
+// The start of METHOD.md section 4 in the scaled unknowns (du, g^, r^, dlambda) of a vector of
+// size `size` (entries beyond dlambda are left zero):
+//  warm: du0, dlambda0 from `start` fitted to the constraint (38), (41), r^0 = r^k / R (40),
+//        g^0 = -phi(u^k + du0) / L (39), so (30) and (33) hold exactly;
+//  cold (report section 5.1): du0 = 0, g^0 = -1, r^0 = +1, dlambda0 fitted to the constraint.
+Vec MakeStepEquationStart(const StepProblem& step, const StartPoint& start, int size);
+
+// The square system of one step with the common blocks; derived classes provide the
+// complementarity rows and, with rho, the extra row.
+class StepEquationSystem : public EquationSystem {
+ public:
+  // The Jacobian pattern, built on first use and reusable by later systems of the same model,
+  // constraint kind and index, and layout (a path analyses it once).
+  struct PatternCache;
+  // An empty cache to share between the systems of a formulation's steps.
+  static std::shared_ptr<PatternCache> MakePatternCache();
+
+  ~StepEquationSystem() override;
+  int size() const override { return layout_.size(); }
+  bool Residual(const Vec& x, Vec* residual) final;
+  void Jacobian(const Vec& x, SpMat* jacobian) final;
+  const StepEquationLayout& step_layout() const { return layout_; }
+  const StepProblem& step() const { return step_; }
+
+  // Adds values to a Jacobian in the order of the entries appended to the pattern.
+  struct Cursor {
+    double* values;
+    const int* slots;
+    std::size_t k;
+    void Add(double value) { values[slots[k++]] += value; }
+    void Skip() { ++k; }
+  };
+
+ protected:
+  StepEquationSystem(const StepProblem& step, bool has_rho, std::shared_ptr<PatternCache> cache);
+
+  // The complementarity row of a pair (a = g^_p, b = -r^_p, rho = 0 without rho).
+  virtual double Complementarity(double a, double b, double rho) const = 0;
+  // An element of its generalised Jacobian: partials in a, b and rho.
+  virtual void ComplementarityElement(double a, double b, double rho, double* d_a, double* d_b,
+                                      double* d_rho) const = 0;
+  // With rho: the extra row's value, its pattern (appended in fill order) and its values.
+  virtual double ExtraRow(const Vec& /*x*/) const { return 0.0; }
+  virtual void AppendExtraRowEntries(std::vector<ScatterPattern::Entry>* /*entries*/) const {}
+  virtual void FillExtraRow(const Vec& /*x*/, Cursor* /*cursor*/) const {}
+
+ private:
+  const StepProblem& step_;
+  StepEquationLayout layout_;
+  std::shared_ptr<PatternCache> cache_;
+  // Work storage reused across evaluations.
+  Vec u_, internal_, phi_;
+  SpMat stiffness_, curvature_, gap_jacobian_;
+};
+
+// Runs `solver` on `system` from *x, recording the per-iteration history (with comp_res from
+// the scaled g^, r^), honouring the time limit and the interrupt hook, and fills `result`:
+// status, message, counts, the point in physical units and details["final_merit"].
+// `on_iteration`, if given, sees each iterate after it is recorded.
+SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
+                                    const SolveControls& controls, StepResult* result,
+                                    const std::function<void(const Vec&)>& on_iteration = {});
+
+}  // namespace cb
