@@ -166,7 +166,7 @@ TEST_P(FormulationsTest, SolvesTheFixture) {
   const Fixture& f = FindFixture(c.fixture);
   const ConstraintKind kind = f.path ? ConstraintKind::kArcLength : f.constraint.kind;
   if (!formulation->Supports(kind)) {
-    GTEST_SKIP() << c.formulation << " cannot express a " << ToString(kind) << " step";
+    GTEST_SKIP() << c.formulation << " cannot express the step constraint " << ToString(kind);
   }
   const StepProblem step = f.Step();
   if (!f.problem.model->has_energy() && c.formulation.find("energy") != std::string::npos) {

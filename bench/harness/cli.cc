@@ -361,7 +361,7 @@ int Compare(const std::vector<std::string>& args) {
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
   CsvWriter runs(a.out + "/runs.csv", {"problem", "formulation", "solver", "start", "mode",
-                                       "settings", "status", "steps", "verified", "message"});
+                                       "settings", "status", "attempts", "accepted", "message"});
 
   // The reference path: the work every formulation is given in replay mode (warm start,
   // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
@@ -397,8 +397,8 @@ int Compare(const std::vector<std::string>& args) {
       row << problem.name << formulation->name() << formulation->solver() << ToString(start)
           << a.mode << formulation->settings();
       if (!formulation->Supports(kind)) {
-        const std::string why =
-            formulation->name() + " cannot express a " + std::string(ToString(kind)) + " step";
+        const std::string why = formulation->name() + " cannot express the step constraint '" +
+                                std::string(ToString(kind)) + "'";
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
         row << "skipped" << 0 << 0 << why;
         runs.Write(row);
@@ -415,7 +415,7 @@ int Compare(const std::vector<std::string>& args) {
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
                              : Trace(problem, *formulation, run_options, &recorder);
-      row << ToString(s.status) << recorder.attempts() << recorder.verified() << s.message;
+      row << ToString(s.status) << recorder.attempts() << recorder.accepted() << s.message;
       runs.Write(row);
       if (s.status == Status::kStoppedByCaller) return kExitInterrupted;
     }

@@ -46,7 +46,7 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
   const StepResult& res = a.result;
   const bool found = res.status == Status::kConverged;
   if (!a.accepted) all_verified_ = false;
-  if (a.verdict.verified) ++verified_;
+  if (a.accepted) ++accepted_;
   CsvWriter::Row row;
   row << label_.problem << label_.formulation << label_.solver << label_.start << a.step
       << a.state.lambda << ControlDisplacement(a.state) << res.counts.iterations

@@ -47,7 +47,7 @@ class RunRecorder final : public PathObserver {
 
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }
-  int verified() const { return verified_; }
+  int accepted() const { return accepted_; }
 
  private:
   double ControlDisplacement(const State& state) const;
@@ -57,7 +57,7 @@ class RunRecorder final : public PathObserver {
   RunLabel label_;
   bool all_verified_ = true;
   int attempts_ = 0;
-  int verified_ = 0;
+  int accepted_ = 0;
   int total_steps_ = 0;
   bool progress_ = false;  // on a terminal only
 };

@@ -13,8 +13,8 @@ StepResult Formulation::Solve(const StepProblem& step, const StartPoint& start,
   step.Validate();
   if (!available()) throw std::invalid_argument(name() + ": not available in this build");
   if (!Supports(step.constraint.kind)) {
-    throw std::invalid_argument(name() + " cannot express a " +
-                                std::string(ToString(step.constraint.kind)) + " step");
+    throw std::invalid_argument(name() + " cannot express the step constraint '" +
+                                std::string(ToString(step.constraint.kind)) + "'");
   }
   const int d = step.num_dofs();
   const int nc = step.num_pairs();
