@@ -27,6 +27,47 @@ def histogram(accepted):
     return accepted["iterations"].value_counts().sort_index()
 
 
+def comparisons(root):
+    """Comparison directories (written by `contactbench compare`): those with a runs.csv."""
+    for runs_csv in sorted(glob.glob(os.path.join(root, "**", "runs.csv"), recursive=True)):
+        run_dir = os.path.dirname(runs_csv)
+        yield (os.path.relpath(run_dir, root), pd.read_csv(runs_csv),
+               pd.read_csv(os.path.join(run_dir, "steps.csv")))
+
+
+def comparison_table(name, runs, steps):
+    """Per formulation x start: success rate, median iterations and time per step over the
+    accepted steps, and the warm-start gain (cold / warm medians, where both exist)."""
+    out = ["", f"## Comparison `{name}` (mode: {', '.join(sorted(runs['mode'].unique()))})", "",
+           "Success = accepted (verified, not turned back) / replayed steps. Medians over the "
+           "accepted steps. For NLopt formulations iterations are objective evaluations.", "",
+           "| formulation | start | success | median iterations | median time per step [ms] "
+           "| warm-start gain (iterations) | warm-start gain (time) |",
+           "|---|---|---|---|---|---|---|"]
+    medians = {}
+    for (formulation, start), group in steps.groupby(["formulation", "start"], sort=False):
+        accepted = group[group["accepted"]]
+        medians[(formulation, start)] = (
+            accepted["iterations"].median() if len(accepted) else float("nan"),
+            accepted["time_s"].median() * 1e3 if len(accepted) else float("nan"))
+    for _, run in runs.iterrows():
+        key = (run["formulation"], run["start"])
+        if run["status"] == "skipped":
+            out.append(f"| {key[0]} | {key[1]} | skipped: {run['message']} | | | | |")
+            continue
+        iters, ms = medians.get(key, (float("nan"), float("nan")))
+        rate = run["accepted"] / run["attempts"] if run["attempts"] else 0.0
+        gain_i = gain_t = ""
+        if key[1] == "cold" and (key[0], "warm") in medians:
+            wi, wt = medians[(key[0], "warm")]
+            gain_i = f"{iters / wi:.2f}" if wi == wi and iters == iters else "n/a"
+            gain_t = f"{ms / wt:.2f}" if wt == wt and ms == ms else "n/a"
+        fmt = lambda v, f: "-" if v != v else format(v, f)
+        out.append(f"| {key[0]} | {key[1]} | {rate:.0%} ({run['accepted']}/{run['attempts']}) | "
+                   f"{fmt(iters, 'g')} | {fmt(ms, '.3g')} | {gain_i} | {gain_t} |")
+    return out
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     out = ["# Suite summary", "",
@@ -35,7 +76,11 @@ def main():
            "| time [s] | kinks located (verified) |",
            "|---|---|---|---|---|---|---|---|"]
     histograms = {}
+    compared = {os.path.dirname(p) for p in
+                glob.glob(os.path.join(root, "**", "runs.csv"), recursive=True)}
     for name, steps, kinks in runs(root):
+        if os.path.join(root, name) in compared:
+            continue
         if steps.empty:
             out.append(f"| {name} | 0 | 0 | no | - | - | - | - |")
             continue
@@ -67,6 +112,8 @@ def main():
             if problem == "arch-curved":
                 row += f" | {REPORT_TABLE_2.get(c, 0)}"
             out.append(row + " |")
+    for name, runs_table, steps in comparisons(root):
+        out += comparison_table(name, runs_table, steps)
     print("\n".join(out))
 
 

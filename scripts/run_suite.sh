@@ -34,5 +34,11 @@ for problem in arch-flat arch-curved; do
   done
 done
 
+# Every arc-length-capable formulation on the same 200 P3 steps (replay mode), warm and cold
+# (issue 3); a step may take at most 5 s (dense SLSQP is the slow one).
+echo "== contactbench compare --problem arch-curved (200 steps, warm and cold)" >&2
+"$cb" compare --problem arch-curved --starts warm,cold --steps 200 --time-limit 5 \
+    --out "$out/compare/arch-curved" || status=3
+
 /usr/bin/python3 "$here/results/summarize.py" "$out" > "$out/SUMMARY.md" && echo "wrote $out/SUMMARY.md" >&2
 exit $status
