@@ -84,7 +84,6 @@ struct StepEquationSystem::PatternCache {
   ConstraintKind kind = ConstraintKind::kArcLength;
   int index = -1;
   bool has_rho = false;
-  long nnz_stiffness = -1;
   long nnz_curvature = -1;
   long nnz_gap = -1;
   std::vector<int> load_rows;  // rows where f != 0
@@ -118,13 +117,13 @@ bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
   u_ = step_.base.u + du;
   model.InternalForce(u_, &internal_);
   model.Gaps(u_, &phi_);
-  model.GapJacobian(u_, &gap_jacobian_);
+  model.GeneralisedReaction(u_, r, &reaction_);  // grad phi^T r^, without assembling grad phi
 
   residual->resize(l.size());
   const double lambda = step_.base.lambda + dlambda;
-  residual->segment(0, l.d) = (internal_ - lambda * model.load_pattern()) / force -
-                              gap_jacobian_.transpose() * r;  // (29) / R
-  residual->segment(l.d, l.nc) = g + phi_ / length;           // (30) / L
+  residual->segment(0, l.d) =
+      (internal_ - lambda * model.load_pattern()) / force - reaction_;  // (29) / R
+  residual->segment(l.d, l.nc) = g + phi_ / length;                     // (30) / L
   const int row3 = l.complementarity_row();
   for (int p = 0; p < l.nc; ++p) (*residual)[row3 + p] = Complementarity(g[p], -r[p], rho);
   if (step_.constraint.kind == ConstraintKind::kKink) {
@@ -152,7 +151,6 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   const double dlambda = x[l.dlambda()];
   const double rho = l.has_rho ? x[l.rho()] : 0.0;
   u_ = step_.base.u + du;
-  model.Stiffness(u_, &stiffness_);
   model.GapJacobian(u_, &gap_jacobian_);
   model.GapCurvature(u_, force * r, &curvature_);
 
@@ -161,12 +159,13 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   const StepConstraint& c = step_.constraint;
   PatternCache& cache = *cache_;
   if (cache.model != &model || cache.kind != c.kind || cache.index != c.index ||
-      cache.has_rho != l.has_rho || cache.nnz_stiffness != stiffness_.nonZeros() ||
-      cache.nnz_curvature != curvature_.nonZeros() || cache.nnz_gap != gap_jacobian_.nonZeros()) {
+      cache.has_rho != l.has_rho || cache.nnz_curvature != curvature_.nonZeros() ||
+      cache.nnz_gap != gap_jacobian_.nonZeros()) {
     // Entries in the order the fill below adds them.
     std::vector<ScatterPattern::Entry> e;
     cache.first_stiffness = e.size();
-    AppendBlockEntries(stiffness_, 0, 0, false, &e);
+    const std::vector<std::pair<int, int>> stiffness_entries = model.StiffnessEntries();
+    e.insert(e.end(), stiffness_entries.begin(), stiffness_entries.end());
     cache.first_curvature = e.size();
     AppendBlockEntries(curvature_, 0, 0, false, &e);
     cache.first_gap_t = e.size();
@@ -208,7 +207,6 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
     cache.kind = c.kind;
     cache.index = c.index;
     cache.has_rho = l.has_rho;
-    cache.nnz_stiffness = stiffness_.nonZeros();
     cache.nnz_curvature = curvature_.nonZeros();
     cache.nnz_gap = gap_jacobian_.nonZeros();
   }
@@ -216,7 +214,7 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   const std::vector<int>& slots = cache.pattern.slots();
   cache.pattern.Reset(jacobian);
   // dF1/ddu = (hess pi - sum_p r_p hess phi_p) / R, dF1/dr^ = -grad phi^T.
-  ScatterBlock(stiffness_, 1.0 / force, slots, cache.first_stiffness, jacobian);
+  model.AddStiffness(u_, 1.0 / force, slots.data() + cache.first_stiffness, jacobian->valuePtr());
   ScatterBlock(curvature_, -1.0 / force, slots, cache.first_curvature, jacobian);
   ScatterBlock(gap_jacobian_, -1.0, slots, cache.first_gap_t, jacobian);
   // dF2/ddu = grad phi / L.

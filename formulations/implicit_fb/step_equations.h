@@ -111,8 +111,8 @@ class StepEquationSystem : public EquationSystem {
   StepEquationLayout layout_;
   std::shared_ptr<PatternCache> cache_;
   // Work storage reused across evaluations.
-  Vec u_, internal_, phi_;
-  SpMat stiffness_, curvature_, gap_jacobian_;
+  Vec u_, internal_, phi_, reaction_;
+  SpMat curvature_, gap_jacobian_;
 };
 
 // Runs `solver` on `system` from *x, recording the per-iteration history (with comp_res from

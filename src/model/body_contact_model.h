@@ -33,6 +33,12 @@ class BodyContactModel final : public ContactModel {
   double Energy(const Vec& u) const override { return body_->Energy(u); }
   void InternalForce(const Vec& u, Vec* force) const override { body_->InternalForce(u, force); }
   void Stiffness(const Vec& u, SpMat* stiffness) const override { body_->Stiffness(u, stiffness); }
+  std::vector<std::pair<int, int>> StiffnessEntries() const override {
+    return body_->StiffnessEntries();
+  }
+  void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override {
+    body_->AddStiffness(u, scale, slots, values);
+  }
   void Gaps(const Vec& u, Vec* phi) const override;
   void GapJacobian(const Vec& u, SpMat* jacobian) const override;
   void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override;

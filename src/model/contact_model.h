@@ -2,6 +2,9 @@
 // discretised body and its contact candidates. Evaluation only, no state about steps or solvers.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "core/types.h"
 
 namespace cb {
@@ -28,6 +31,28 @@ class ContactModel {
   virtual void InternalForce(const Vec& u, Vec* force) const = 0;
   // hess pi(u), the tangent stiffness (d x d). Its sparsity pattern does not depend on u.
   virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
+
+  // The stiffness as a stream of contributions, to assemble it straight into a larger matrix
+  // (the Jacobian of a step) without an intermediate matrix: StiffnessEntries() lists the
+  // (row, col) of every contribution in the order AddStiffness adds them, and AddStiffness adds
+  // scale * (k-th contribution at u) to values[slots[k]]. The defaults go through Stiffness();
+  // element-by-element models override both.
+  virtual std::vector<std::pair<int, int>> StiffnessEntries() const {
+    SpMat k;
+    Stiffness(Vec::Zero(num_dofs()), &k);
+    std::vector<std::pair<int, int>> entries;
+    for (int j = 0; j < k.outerSize(); ++j) {
+      for (SpMat::InnerIterator it(k, j); it; ++it) {
+        entries.emplace_back(static_cast<int>(it.row()), j);
+      }
+    }
+    return entries;
+  }
+  virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const {
+    SpMat k;
+    Stiffness(u, &k);
+    for (Eigen::Index i = 0; i < k.nonZeros(); ++i) values[slots[i]] += scale * k.valuePtr()[i];
+  }
 
   // phi(u): phi_p = varphi_p(x_p(u)), positive when the node is inside obstacle p (size nc).
   // The gap is g = -phi.

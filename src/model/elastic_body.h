@@ -3,6 +3,7 @@
 // free dof (an index into u) or fixed at zero (a support).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "core/types.h"
@@ -43,6 +44,9 @@ class ElasticBody {
   virtual void InternalForce(const Vec& u, Vec* force) const = 0;
   // Pattern fixed at construction.
   virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
+  // The stiffness as a stream of contributions (see ContactModel::StiffnessEntries).
+  virtual std::vector<std::pair<int, int>> StiffnessEntries() const = 0;
+  virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const = 0;
 
   int num_dofs() const { return dofs().num_dofs(); }
   // Current position X + u of a node; fixed components stay at X.

@@ -223,6 +223,24 @@ void PlaneStressQ4::Stiffness(const Vec& u, SpMat* stiffness) const {
   *stiffness = stiffness_;
 }
 
+std::vector<std::pair<int, int>> PlaneStressQ4::StiffnessEntries() const {
+  std::vector<std::pair<int, int>> entries;
+  entries.reserve(stiffness_.nonZeros());
+  for (int j = 0; j < stiffness_.outerSize(); ++j) {
+    for (SpMat::InnerIterator it(stiffness_, j); it; ++it) {
+      entries.emplace_back(static_cast<int>(it.row()), j);
+    }
+  }
+  return entries;
+}
+
+void PlaneStressQ4::AddStiffness(const Vec& u, double scale, const int* slots,
+                                 double* values) const {
+  CheckSize(u, num_dofs(), "AddStiffness");
+  const double* k = stiffness_.valuePtr();
+  for (Eigen::Index i = 0; i < stiffness_.nonZeros(); ++i) values[slots[i]] += scale * k[i];
+}
+
 // A uniform traction t on a straight edge, interpolated by the linear edge shape functions:
 // the consistent nodal force of each end is integral N_a t thickness ds = t thickness len / 2.
 void PlaneStressQ4::AddEdgeTraction(int node_a, int node_b, const Point& traction,

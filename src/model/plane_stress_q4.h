@@ -33,6 +33,9 @@ class PlaneStressQ4 final : public ElasticBody {
   double Energy(const Vec& u) const override;
   void InternalForce(const Vec& u, Vec* force) const override;
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
+  // The constant K streamed in its storage order.
+  std::vector<std::pair<int, int>> StiffnessEntries() const override;
+  void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   const std::vector<Element>& elements() const { return elements_; }
   const PlaneStressMaterial& material() const { return material_; }

@@ -121,6 +121,7 @@ Truss::Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool
   }
   const int n = dofs_.num_dofs();
   stiffness_pattern_ = ScatterPattern(n, n, entries);
+  stiffness_entries_ = std::move(entries);
 }
 
 double Truss::MemberForce(int member, const Vec& u) const {
@@ -168,17 +169,20 @@ void Truss::InternalForce(const Vec& u, Vec* force) const {
 // as [[k, -k], [-k, k]] on (node_i, node_j).
 void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
   CheckSize(u, num_dofs(), "Stiffness");
-  const int d = dim();
   stiffness_pattern_.Reset(stiffness);
-  double* values = stiffness->valuePtr();
-  const std::vector<int>& slots = stiffness_pattern_.slots();
+  AddStiffness(u, 1.0, stiffness_pattern_.slots().data(), stiffness->valuePtr());
+}
+
+void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* values) const {
+  CheckSize(u, num_dofs(), "AddStiffness");
+  const int d = dim();
   std::size_t next = 0;
   for (std::size_t k = 0; k < members_.size(); ++k) {
     const TrussMember& m = members_[k];
     const Kinematics kin = MemberKinematics(k, u);
     const double inv_length = 1.0 / kin.length;
     const double inv_reference = 1.0 / lengths_[k];
-    const double ea = m.youngs_modulus * m.area;
+    const double ea = scale * m.youngs_modulus * m.area;  // the block is scaled through E A
     const double axial = ea * kin.elongation * inv_reference;
     double e[3];
     for (int c = 0; c < d; ++c) e[c] = kin.delta[c] * inv_length;

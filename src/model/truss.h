@@ -32,6 +32,8 @@ class Truss final : public ElasticBody {
   double Energy(const Vec& u) const override;
   void InternalForce(const Vec& u, Vec* force) const override;
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
+  std::vector<std::pair<int, int>> StiffnessEntries() const override { return stiffness_entries_; }
+  void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   const std::vector<TrussMember>& members() const { return members_; }
   // The dofs of a member's end nodes, [node_i components, node_j components], -1 if fixed.
@@ -57,6 +59,7 @@ class Truss final : public ElasticBody {
   std::vector<Point> reference_deltas_;  // X_j - X_i
   std::vector<MemberDofs> member_dofs_;
   DofMap dofs_;
+  std::vector<std::pair<int, int>> stiffness_entries_;  // in AddStiffness's order
   ScatterPattern stiffness_pattern_;
 };
 
