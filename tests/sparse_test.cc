@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include "core/finite.h"
+
 namespace cb {
 namespace {
 
@@ -45,6 +49,22 @@ TEST(SparseTest, BlockEntriesTransposeAndScatter) {
   EXPECT_EQ(m.coeff(3, 0), -14.0);
   EXPECT_EQ(m.coeff(1, 1), -6.0);
   EXPECT_THROW(ScatterPattern(2, 2, {{2, 0}}), std::invalid_argument);
+}
+
+TEST(FiniteTest, AllFiniteFindsEveryKindOfNonFiniteValue) {
+  std::vector<double> v = {0.0, -1.0, 1e308, std::numeric_limits<double>::denorm_min(),
+                           -std::numeric_limits<double>::max()};
+  EXPECT_TRUE(AllFinite(v.data(), v.size()));
+  EXPECT_TRUE(AllFinite(nullptr, 0));
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity()}) {
+    for (std::size_t at : {std::size_t{0}, std::size_t{2}, v.size() - 1}) {
+      std::vector<double> w = v;
+      w[at] = bad;
+      EXPECT_FALSE(AllFinite(w.data(), w.size())) << bad << " at " << at;
+    }
+  }
 }
 
 }  // namespace

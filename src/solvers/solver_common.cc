@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "core/finite.h"
+
 namespace cb {
 namespace internal {
 
@@ -32,9 +34,7 @@ bool EvaluateJacobian(EquationSystem& system, const Vec& x, SpMat* jacobian,
                                 std::to_string(jacobian->cols()) + " matrix for a system of size " +
                                 std::to_string(x.size()));
   }
-  const double* values = jacobian->valuePtr();
-  return std::all_of(values, values + jacobian->nonZeros(),
-                     [](double v) { return std::isfinite(v); });
+  return AllFinite(jacobian->valuePtr(), static_cast<std::size_t>(jacobian->nonZeros()));
 }
 
 std::string At(int iteration) { return " at iteration " + std::to_string(iteration); }
