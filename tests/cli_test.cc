@@ -126,9 +126,11 @@ TEST(CliTest, AFailedRunExitsWith3AndKeepsItsRecords) {
 
 TEST(CliTest, CompareReplaysTheSameStepsForEveryFormulationAndStart) {
   const auto dir = TempDir("compare");
-  const Outcome o = RunCli("compare --problem two-bar-obstacle --formulations implicit-fb "
-                           "--starts warm,cold --solver newton --steps 40 --arc-length 0.02 "
-                           "--out " + dir.string());
+  const Outcome o = RunCli(
+      "compare --problem two-bar-obstacle --formulations implicit-fb "
+      "--starts warm,cold --solver newton --steps 40 --arc-length 0.02 "
+      "--out " +
+      dir.string());
   ASSERT_EQ(o.status, 0) << o.output;
   const auto steps = Lines(dir / "steps.csv");
   // One attempt per reference step for each start, labelled replay.

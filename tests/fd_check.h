@@ -2,11 +2,11 @@
 // manner of Ceres' GradientChecker): central differences with a step scaled to each entry.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
-
-#include <gtest/gtest.h>
 
 #include "core/types.h"
 
@@ -46,16 +46,17 @@ inline double RelativeError(const Mat& a, const Mat& b) {
 }  // namespace cb::testing
 
 // Asserts that analytic `actual` matches finite-difference `expected` to relative `tol`.
-#define EXPECT_DERIVATIVE_NEAR(actual, expected, tol)                                    \
-  do {                                                                                   \
-    const ::cb::Mat cb_actual_ = (actual);                                               \
-    const ::cb::Mat cb_expected_ = (expected);                                           \
-    ASSERT_EQ(cb_actual_.rows(), cb_expected_.rows());                                   \
-    ASSERT_EQ(cb_actual_.cols(), cb_expected_.cols());                                   \
-    EXPECT_LT(::cb::testing::RelativeError(cb_actual_, cb_expected_), (tol))             \
-        << "analytic:\n" << cb_actual_.topLeftCorner(std::min<long>(6, cb_actual_.rows()),       \
-                                                   std::min<long>(6, cb_actual_.cols())) \
-        << "\nfinite difference:\n"                                                      \
-        << cb_expected_.topLeftCorner(std::min<long>(6, cb_expected_.rows()),            \
-                                      std::min<long>(6, cb_expected_.cols()));           \
+#define EXPECT_DERIVATIVE_NEAR(actual, expected, tol)                          \
+  do {                                                                         \
+    const ::cb::Mat cb_actual_ = (actual);                                     \
+    const ::cb::Mat cb_expected_ = (expected);                                 \
+    ASSERT_EQ(cb_actual_.rows(), cb_expected_.rows());                         \
+    ASSERT_EQ(cb_actual_.cols(), cb_expected_.cols());                         \
+    EXPECT_LT(::cb::testing::RelativeError(cb_actual_, cb_expected_), (tol))   \
+        << "analytic:\n"                                                       \
+        << cb_actual_.topLeftCorner(std::min<long>(6, cb_actual_.rows()),      \
+                                    std::min<long>(6, cb_actual_.cols()))      \
+        << "\nfinite difference:\n"                                            \
+        << cb_expected_.topLeftCorner(std::min<long>(6, cb_expected_.rows()),  \
+                                      std::min<long>(6, cb_expected_.cols())); \
   } while (0)

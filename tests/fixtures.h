@@ -317,4 +317,21 @@ inline const Fixture& FindFixture(const std::string& name) {
   throw std::invalid_argument("no fixture " + name);
 }
 
+// A step constraint of each kind on a model with nc pairs, as the derivative tests use them: an
+// arc length with a lambda weight other than 1, a fixed load, a displacement of dof 0, the kink
+// condition (53) of the last pair.
+inline StepConstraint ConstraintOf(ConstraintKind kind, int nc) {
+  switch (kind) {
+    case ConstraintKind::kArcLength:
+      return StepConstraint::ArcLength(0.1, 0.7);
+    case ConstraintKind::kFixedLoad:
+      return StepConstraint::FixedLoad(4.0);
+    case ConstraintKind::kDisplacement:
+      return StepConstraint::Displacement(0, 0.01);
+    case ConstraintKind::kKink:
+      return StepConstraint::Kink(nc - 1);
+  }
+  return {};
+}
+
 }  // namespace cb::testing

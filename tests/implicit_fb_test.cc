@@ -8,6 +8,7 @@
 #include <random>
 
 #include "fd_check.h"
+#include "fixtures.h"
 #include "path/path.h"
 #include "problems/problem.h"
 #include "verdict/verdict.h"
@@ -143,21 +144,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(rng));
   base.lambda = 3.0;
-  StepConstraint constraint;
-  switch (c.kind) {
-    case ConstraintKind::kArcLength:
-      constraint = StepConstraint::ArcLength(0.1, 0.7);
-      break;
-    case ConstraintKind::kFixedLoad:
-      constraint = StepConstraint::FixedLoad(4.0);
-      break;
-    case ConstraintKind::kDisplacement:
-      constraint = StepConstraint::Displacement(0, 0.01);
-      break;
-    case ConstraintKind::kKink:
-      constraint = StepConstraint::Kink(nc - 1);
-      break;
-  }
+  const StepConstraint constraint = testing::ConstraintOf(c.kind, nc);
   StepProblem step{p.model.get(), base, constraint, {0.1, 2.0}};
   ImplicitFbSystem system(step, EtaEquation{static_cast<EtaCase>(c.eta), 0.8});
   const ImplicitFbLayout& l = system.layout();

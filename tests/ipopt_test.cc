@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fd_check.h"
+#include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/ipopt/ipopt_nlp.h"
 #include "formulations/registry.h"
@@ -145,21 +146,7 @@ TEST_P(IpoptMpccNlpTest, DerivativesMatchFiniteDifferencesOnACurvedObstacle) {
   const int nc = p.model->num_pairs();
   std::mt19937 rng(17 + static_cast<int>(c.kind));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  StepConstraint constraint;
-  switch (c.kind) {
-    case ConstraintKind::kArcLength:
-      constraint = StepConstraint::ArcLength(0.1, 0.7);
-      break;
-    case ConstraintKind::kFixedLoad:
-      constraint = StepConstraint::FixedLoad(4.0);
-      break;
-    case ConstraintKind::kDisplacement:
-      constraint = StepConstraint::Displacement(0, 0.01);
-      break;
-    case ConstraintKind::kKink:
-      constraint = StepConstraint::Kink(nc - 1);
-      break;
-  }
+  const StepConstraint constraint = testing::ConstraintOf(c.kind, nc);
   StepProblem step{p.model.get(), RandomBase(p, &rng), constraint, {0.1, 2.0}};
   MpccNlp nlp(step, c.reformulation, 2.5);
   nlp.set_relaxation(0.01);

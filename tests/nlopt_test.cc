@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "fd_check.h"
+#include "fixtures.h"
 #include "formulations/nlopt/nlopt_problems.h"
 #include "path/path.h"
 #include "problems/problem.h"
@@ -38,20 +39,6 @@ State RandomState(const ContactModel& model, std::mt19937* rng) {
   return s;
 }
 
-StepConstraint ConstraintOf(ConstraintKind kind, int nc) {
-  switch (kind) {
-    case ConstraintKind::kArcLength:
-      return StepConstraint::ArcLength(0.1, 0.7);
-    case ConstraintKind::kFixedLoad:
-      return StepConstraint::FixedLoad(4.0);
-    case ConstraintKind::kDisplacement:
-      return StepConstraint::Displacement(0, 0.01);
-    case ConstraintKind::kKink:
-      return StepConstraint::Kink(nc - 1);
-  }
-  return {};
-}
-
 const ConstraintKind kAllKinds[] = {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
                                     ConstraintKind::kDisplacement, ConstraintKind::kKink};
 
@@ -65,7 +52,7 @@ TEST(NloptDerivativeTest, MeritGradientMatchesFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     ConstraintOf(kind, p.model->num_pairs()),
+                     testing::ConstraintOf(kind, p.model->num_pairs()),
                      {0.1, 2.0}};
     NloptMeritObjective objective(step, EtaEquation{EtaCase::kCase1, 0.8}, 1.0);
     Vec x(objective.size());
@@ -135,7 +122,7 @@ TEST(NloptDerivativeTest, MpccObjectiveAndEqualitiesMatchFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     ConstraintOf(kind, p.model->num_pairs()),
+                     testing::ConstraintOf(kind, p.model->num_pairs()),
                      {0.1, 2.0}};
     NloptMpccProblem problem(step, 2.5);
     const int n = problem.size();

@@ -96,22 +96,7 @@ StepProblem RandomStep(const Problem& p, ConstraintKind kind, std::mt19937* rng)
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(*rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(*rng));
   base.lambda = 3.0;
-  StepConstraint constraint;
-  switch (kind) {
-    case ConstraintKind::kArcLength:
-      constraint = StepConstraint::ArcLength(0.1, 0.7);
-      break;
-    case ConstraintKind::kFixedLoad:
-      constraint = StepConstraint::FixedLoad(4.0);
-      break;
-    case ConstraintKind::kDisplacement:
-      constraint = StepConstraint::Displacement(0, 0.01);
-      break;
-    case ConstraintKind::kKink:
-      constraint = StepConstraint::Kink(nc - 1);
-      break;
-  }
-  return {p.model.get(), base, constraint, {0.1, 2.0}};
+  return {p.model.get(), base, testing::ConstraintOf(kind, nc), {0.1, 2.0}};
 }
 
 TEST_P(NonsmoothJacobianTest, MatchesFiniteDifferencesAwayFromKinks) {
