@@ -13,6 +13,7 @@
 
 #include <map>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,11 @@ struct Case {
   std::string fixture;
   StartKind start = StartKind::kWarm;
 };
+
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.formulation << " on " << c.fixture << " (" << ToString(c.start) << " start)";
+}
 
 std::vector<Case> AllCases() {
   std::vector<Case> cases;
