@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "problems/problem.h"
 
@@ -36,26 +37,7 @@ PathSummary Trace(const Problem& p, Formulation& f, int steps, Collector* c, dou
   return TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, c);
 }
 
-// Two-bar truss closed form (src/problems/verification.cc): lambda(w) with w the apex height.
-struct TwoBar {
-  double b, h, ea, load;
-  double Lambda(double w) const {
-    const double l = std::sqrt(b * b + w * w);
-    const double length = std::sqrt(b * b + h * h);
-    return 2.0 * ea / load * (1.0 / l - 1.0 / length) * w;
-  }
-  // The limit point: l^3 = b^2 L.
-  double LimitHeight() const {
-    const double length = std::sqrt(b * b + h * h);
-    const double l = std::cbrt(b * b * length);
-    return std::sqrt(l * l - b * b);
-  }
-};
-
-TwoBar TwoBarOf(const Problem& p) {
-  const Parameters& q = p.parameters;
-  return {q.Real("half_span"), q.Real("height"), q.Real("axial_stiffness"), q.Real("load")};
-}
+using testing::TwoBarOf;
 
 TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
   const Problem p = MakeProblem("bar-wall");
@@ -89,7 +71,7 @@ TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
 
 TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
   const Problem p = MakeProblem("two-bar");
-  const TwoBar t = TwoBarOf(p);
+  const testing::TwoBarClosedForm t = TwoBarOf(p);
   ImplicitFb f;
   Collector c;
   const double theta = 0.02;
@@ -113,7 +95,7 @@ TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
 
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
-  const TwoBar t = TwoBarOf(p);
+  const testing::TwoBarClosedForm t = TwoBarOf(p);
   const double floor = p.parameters.Real("floor_height");
   ImplicitFb f;
   Collector c;
