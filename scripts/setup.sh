@@ -8,7 +8,7 @@ shift || true
 
 packages=(cmake g++ ninja-build pkg-config libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev
           libsuitesparse-dev libgtest-dev libbenchmark-dev python3-matplotlib python3-pandas
-          python3-numpy)
+          python3-numpy nlohmann-json3-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +17,8 @@
 
 #include "formulations/registry.h"
 #include "harness/records.h"
+#include "io/problem_file.h"
+#include "model/complementarity_model.h"
 #include "path/path.h"
 #include "path/replay.h"
 #include "problems/problem.h"
@@ -40,15 +44,17 @@ struct UsageError : std::runtime_error {
 
 constexpr const char* kUsage = R"(usage:
   contactbench list
-  contactbench run --problem NAME --formulation NAME --out DIR
+  contactbench run (--problem NAME | --problem-file F.json) --formulation NAME --out DIR
                    [--solver newton|dogleg|quasi-newton] [--eta 1|2|3|4]
                    [--steps N] [--arc-length THETA] [--start warm|cold] [--tol T]
                    [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
                    [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
-  contactbench compare --problem NAME --out DIR [--formulations A,B,...] [--starts warm,cold]
+  contactbench compare (--problem NAME | --problem-file F.json) --out DIR
+                   [--formulations A,B,...] [--starts warm,cold]
                    [--mode replay|free] [--reference NAME] [--steps N] [--arc-length THETA]
                    [--solver S] [--eta E] [--tol T] [--linear-solver NAME] [--time-limit SECONDS]
                    [--set KEY=VALUE ...] [--option FORMULATION:KEY=VALUE ...]
+  contactbench export (--problem NAME | --problem-file F.json) [--set KEY=VALUE ...] --out F.json
   contactbench help
 
 run writes DIR/steps.csv, iterations.csv, kinks.csv, solution.csv and contacts.csv.
@@ -59,12 +65,16 @@ compare: every formulation x start traces the SAME steps (replay mode: each step
 the reference path's previous accepted state; the reference is traced first by --reference,
 default implicit-fb) or its own path (free mode), into one long-format steps.csv and
 iterations.csv, the reference path's kinks.csv, and runs.csv (one row per formulation x start).
+--problem-file reads a problem file (a truss, a plane-stress Q4 mesh, or an LCP; see
+docs/problem-files.md); its --set keys are length_scale, force_scale and load or arc_length,
+steps. export writes a named problem (or a problem file, normalised) as a problem file.
 Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
 4 interrupted (records kept).
 )";
 
 struct RunArguments {
   std::string problem;
+  std::string problem_file;
   std::string formulation;                // run
   std::vector<std::string> formulations;  // compare
   std::vector<StartKind> starts;          // compare
@@ -85,20 +95,23 @@ struct RunArguments {
 };
 
 double ParseNumber(const std::string& option, const std::string& text) {
+  double v = 0.0;
   try {
     std::size_t used = 0;
-    const double v = std::stod(text, &used);
+    v = std::stod(text, &used);
     if (used != text.size()) throw std::invalid_argument(text);
-    return v;
   } catch (const std::exception&) {
     throw UsageError(option + ": '" + text + "' is not a number");
   }
+  if (!std::isfinite(v)) throw UsageError(option + ": must be finite, got '" + text + "'");
+  return v;
 }
 
 int ParseInteger(const std::string& option, const std::string& text) {
   const double v = ParseNumber(option, text);
-  if (v != static_cast<double>(static_cast<int>(v))) {
-    throw UsageError(option + ": '" + text + "' is not an integer");
+  // Range first: converting a double outside int's range is undefined.
+  if (v != std::floor(v) || v < INT_MIN || v > INT_MAX) {
+    throw UsageError(option + ": '" + text + "' is not an integer in range");
   }
   return static_cast<int>(v);
 }
@@ -125,14 +138,23 @@ StartKind ParseStart(const std::string& option, const std::string& s) {
 // Arguments of `run` (compare = false) or `compare` (compare = true).
 RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) {
   RunArguments a;
+  std::vector<std::string> seen;  // options that take one value: refused when repeated
   auto value = [&](std::size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
+    if (args[i] != "--set" && args[i] != "--option") {
+      if (std::find(seen.begin(), seen.end(), args[i]) != seen.end()) {
+        throw UsageError(args[i] + " is given twice");
+      }
+      seen.push_back(args[i]);
+    }
     return args[++i];
   };
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& o = args[i];
     if (o == "--problem") {
       a.problem = value(i);
+    } else if (o == "--problem-file") {
+      a.problem_file = value(i);
     } else if (o == "--formulation" && !compare) {
       a.formulation = value(i);
     } else if (o == "--formulations" && compare) {
@@ -215,8 +237,13 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
       throw UsageError("unknown option '" + o + "'");
     }
   }
-  if (a.problem.empty())
-    throw UsageError("--problem is required (valid: " + Join(ProblemNames()) + ")");
+  if (!a.problem.empty() && !a.problem_file.empty()) {
+    throw UsageError("give either --problem or --problem-file, not both");
+  }
+  if (a.problem.empty() && a.problem_file.empty()) {
+    throw UsageError("--problem NAME or --problem-file F.json is required (valid names: " +
+                     Join(ProblemNames()) + ")");
+  }
   if (!compare && a.formulation.empty()) {
     throw UsageError("--formulation is required (valid: " + Join(FormulationNames()) + ")");
   }
@@ -293,25 +320,56 @@ int List() {
   return kExitOk;
 }
 
-// Refuses an output directory that cannot be written before any work starts.
+// Refuses an output directory that cannot be written before any work starts: created if
+// missing, then probed with a file (permissions alone do not tell: root, read-only mounts).
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw UsageError("--out: cannot create '" + dir + "': " + ec.message());
+  if (ec) throw UsageError("--out: cannot create the directory '" + dir + "': " + ec.message());
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw UsageError("--out: '" + dir + "' exists and is not a directory");
+  }
   const std::string probe = dir + "/.contactbench_write_test";
   {
     std::ofstream f(probe);
-    if (!f) throw UsageError("--out: '" + dir + "' is not writable");
+    if (!f) throw UsageError("--out: the directory '" + dir + "' is not writable");
   }
   std::filesystem::remove(probe, ec);
 }
 
+// The problem of --problem NAME or --problem-file F, with --set applied. Bad input (an unknown
+// name, a bad setting, an invalid problem file) is a usage error.
+Problem LoadProblem(const RunArguments& a) {
+  try {
+    if (!a.problem_file.empty()) return io::LoadProblemFile(a.problem_file, a.settings);
+    return MakeProblem(a.problem, a.settings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+// The last accepted state of a problem that is not a body: an LCP's z and w = M z + q.
+void WriteComplementaritySnapshot(const std::string& dir, const Problem& problem,
+                                  const State& state, int step) {
+  if (problem.body != nullptr ||
+      dynamic_cast<const ComplementarityModel*>(problem.model.get()) == nullptr) {
+    return;
+  }
+  Vec w;
+  problem.model->InternalForce(state.u, &w);
+  CsvWriter solution(dir + "/solution.csv", {"step", "index", "z", "w"});
+  for (int i = 0; i < problem.model->num_dofs(); ++i) {
+    CsvWriter::Row row;
+    row << step << i << state.u[i] << w[i];
+    solution.Write(row);
+  }
+}
+
 int Run(const std::vector<std::string>& args) {
   RunArguments a = ParseArguments(args, false);
-  Problem problem;
+  Problem problem = LoadProblem(a);
   std::unique_ptr<Formulation> formulation;
   try {
-    problem = MakeProblem(a.problem, a.settings);
     formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -331,6 +389,7 @@ int Run(const std::vector<std::string>& args) {
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
   const PathSummary summary = Trace(problem, *formulation, options, &recorder);
   WriteSnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
+  WriteComplementaritySnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
   std::fprintf(stderr, "%s %s: %s (%d accepted steps, %d attempts, %d kinks) -> %s\n",
                problem.name.c_str(), formulation->name().c_str(), summary.message.c_str(),
                summary.accepted_steps, summary.attempts, summary.kinks, a.out.c_str());
@@ -341,11 +400,10 @@ int Run(const std::vector<std::string>& args) {
 
 int Compare(const std::vector<std::string>& args) {
   RunArguments a = ParseArguments(args, true);
-  Problem problem;
+  Problem problem = LoadProblem(a);
   std::vector<std::unique_ptr<Formulation>> formulations;
   std::unique_ptr<Formulation> reference;
   try {
-    problem = MakeProblem(a.problem, a.settings);
     for (const auto& name : a.formulations) {
       formulations.push_back(MakeFormulation(name, ConfigFor(a, name)));
     }
@@ -424,6 +482,59 @@ int Compare(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+// export: --problem NAME or --problem-file F, --set, --out FILE (a problem file).
+int Export(const std::vector<std::string>& args) {
+  RunArguments a;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& o = args[i];
+    if (o != "--problem" && o != "--problem-file" && o != "--set" && o != "--out") {
+      throw UsageError("export: unknown option '" + o +
+                       "' (valid: --problem, --problem-file, --set, --out)");
+    }
+    if (i + 1 >= args.size()) throw UsageError(o + " needs a value");
+    const std::string& v = args[++i];
+    if (o == "--set") {
+      const auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        throw UsageError("--set: expected KEY=VALUE, got '" + v + "'");
+      }
+      a.settings[v.substr(0, eq)] = v.substr(eq + 1);
+      continue;
+    }
+    std::string& field = o == "--problem" ? a.problem : o == "--out" ? a.out : a.problem_file;
+    if (!field.empty()) throw UsageError(o + " is given twice");
+    field = v;
+  }
+  if (!a.problem.empty() && !a.problem_file.empty()) {
+    throw UsageError("give either --problem or --problem-file, not both");
+  }
+  if (a.problem.empty() && a.problem_file.empty()) {
+    throw UsageError("--problem NAME or --problem-file F.json is required (valid names: " +
+                     Join(ProblemNames()) + ")");
+  }
+  if (a.out.empty()) throw UsageError("--out F.json is required");
+  const Problem problem = LoadProblem(a);
+  std::string text;
+  try {
+    text = io::ProblemToJson(problem);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const std::filesystem::path out(a.out);
+  std::error_code ec;
+  if (std::filesystem::is_directory(out, ec)) {
+    throw UsageError("--out: '" + a.out + "' is a directory; give the problem file's name");
+  }
+  const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
+  PrepareOutput(dir.string());
+  std::ofstream file(out, std::ios::binary);
+  file << text;
+  file.close();
+  if (!file) throw UsageError("--out: cannot write '" + a.out + "'");
+  std::fprintf(stderr, "%s -> %s\n", problem.name.c_str(), a.out.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int Main(int argc, char** argv) {
@@ -438,7 +549,9 @@ int Main(int argc, char** argv) {
     if (command == "list") return List();
     if (command == "run") return Run(args);
     if (command == "compare") return Compare(args);
-    throw UsageError("unknown command '" + command + "' (valid: list, run, compare, help)");
+    if (command == "export") return Export(args);
+    throw UsageError("unknown command '" + command +
+                     "' (valid: list, run, compare, export, help)");
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n" << kUsage;
     return kExitBadArguments;

@@ -33,6 +33,9 @@ class HalfSpace final : public Obstacle {
   Point Gradient(const Point& x) const override;
   PointMat Hessian(const Point& x) const override;
   bool is_curved() const override { return false; }
+  // The definition, for writing the obstacle back out (src/io/).
+  const Point& point() const { return point_; }
+  const Point& normal() const { return normal_; }
 
  private:
   Point point_;
@@ -52,6 +55,9 @@ class Ball final : public Obstacle {
   Point Gradient(const Point& x) const override;
   PointMat Hessian(const Point& x) const override;
   bool is_curved() const override { return true; }
+  const Point& centre() const { return centre_; }
+  double radius() const { return radius_; }
+  Side side() const { return side_; }
 
  private:
   double sign() const { return side_ == Side::kSolid ? -1.0 : 1.0; }
