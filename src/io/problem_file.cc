@@ -373,10 +373,16 @@ void CheckHeld(const BodyInput& in, const ElasticBody& body,
   held.setThreshold(1e-9);
   const int restrained = static_cast<int>(held.rank());
   if (restrained >= needed) return;
-  // Name the dominant motion of one free mode.
-  const Mat kernel = held.kernel();
+  // Name one free motion: a rotation if it has any (a rotation about another point mixes in
+  // translations, which would be the wrong name), else the dominant translation.
+  const Vec free = held.kernel().col(0);
+  const int rotations = dim == 2 ? 1 : 3;
   Eigen::Index largest = 0;
-  kernel.col(0).cwiseAbs().maxCoeff(&largest);
+  if (free.tail(rotations).cwiseAbs().maxCoeff(&largest) > 1e-6 * free.norm()) {
+    largest += m - rotations;
+  } else {
+    free.head(dim).cwiseAbs().maxCoeff(&largest);
+  }
   static const char* const kModes2[3] = {"translation in x", "translation in y",
                                          "rotation about z"};
   static const char* const kModes3[6] = {"translation in x", "translation in y",
