@@ -4,10 +4,14 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -80,8 +84,230 @@ TEST(CliTest, BadArgumentsExitWithStatus2AndListTheChoices) {
 }
 
 TEST(CliTest, UnwritableOutputIsRefusedBeforeWork) {
-  const Outcome o = RunCli("run --problem two-bar --formulation implicit-fb --out /proc/nope");
-  EXPECT_EQ(o.status, 2) << o.output;
+  // /proc refuses new entries even to root; a regular file cannot hold a directory.
+  const auto dir = TempDir("unwritable");
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "a-file").string();
+  std::ofstream(file) << "x";
+  for (const std::string& out : {std::string("/proc/nope"), file + "/sub", file}) {
+    for (const std::string& command :
+         {"run --problem two-bar --formulation implicit-fb --out " + out,
+          "compare --problem two-bar --formulations implicit-fb --out " + out,
+          "export --problem two-bar --out " + out + "/p.json"}) {
+      const Outcome o = RunCli(command);
+      EXPECT_EQ(o.status, 2) << command << "\n" << o.output;
+      // The message names the directory; nothing ran (no solver summary was printed).
+      EXPECT_NE(o.output.find("--out"), std::string::npos) << command << "\n" << o.output;
+      EXPECT_NE(o.output.find(out), std::string::npos) << command << "\n" << o.output;
+      EXPECT_EQ(o.output.find("accepted steps"), std::string::npos) << o.output;
+    }
+  }
+}
+
+TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
+  const auto dir = TempDir("range").string();
+  std::filesystem::create_directories(dir);  // for export's "is a directory"
+  const std::string run = "run --problem two-bar --formulation implicit-fb --out " + dir + " ";
+  struct Case {
+    std::string args;
+    std::string expected;
+  } cases[] = {
+      {run + "--steps 1e20", "--steps"},
+      {run + "--steps -3", "--steps"},
+      {run + "--arc-length inf", "--arc-length: must be finite"},
+      {run + "--arc-length 0", "--arc-length"},
+      {run + "--tol nan", "--tol"},
+      {run + "--time-limit -1", "--time-limit"},
+      {run + "--max-cutbacks -1", "--max-cutbacks"},
+      {run + "--eta 2.5", "--eta"},
+      {run + "--steps 5 --steps 6", "--steps is given twice"},
+      {run + "--problem-file x.json", "either --problem or --problem-file"},
+      {"run --formulation implicit-fb --out " + dir, "--problem-file"},
+      {"export --problem two-bar", "--out"},
+      {"export --problem two-bar --formulation implicit-fb --out " + dir + "/p.json",
+       "export: unknown option '--formulation'"},
+      {"export --problem nope --out " + dir + "/p.json", "arch-curved"},
+      {"export --problem two-bar --out " + dir, "is a directory"},
+  };
+  for (const auto& c : cases) {
+    const Outcome o = RunCli(c.args);
+    EXPECT_EQ(o.status, 2) << c.args << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.args << "\n" << o.output;
+  }
+}
+
+// --- problem files ---------------------------------------------------------------------------
+
+const std::filesystem::path kExamples =
+    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+
+// Rows of a CSV file as column -> value maps.
+std::vector<std::map<std::string, std::string>> Table(const std::filesystem::path& file) {
+  const auto lines = Lines(file);
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty()) return rows;
+  auto split = [](const std::string& line) {
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+    return fields;
+  };
+  const auto header = split(lines[0]);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto fields = split(lines[i]);
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < header.size() && k < fields.size(); ++k) row[header[k]] = fields[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double Number(const std::map<std::string, std::string>& row, const std::string& column) {
+  auto it = row.find(column);
+  return it == row.end() ? std::nan("") : std::stod(it->second);
+}
+
+TEST(CliTest, EveryExampleRunsAndVerifiesWithItsKnownAnswer) {
+  struct Case {
+    std::string file;
+    std::function<void(const std::filesystem::path&)> check;
+  } cases[] = {
+      {"truss-2d-bar-wall.json",
+       [](const std::filesystem::path& out) {
+         // k = 1 / (L1/EA1 + L2/EA2) = 200/3; past lambda_c = k gap the wall carries the rest.
+         const auto contacts = Table(out / "contacts.csv");
+         ASSERT_EQ(contacts.size(), 1u);
+         const double lambda = Number(contacts[0], "lambda");
+         EXPECT_GT(lambda, 200.0 / 3.0 * 0.01);
+         EXPECT_NEAR(Number(contacts[0], "g"), 0.0, 1e-10);
+         EXPECT_NEAR(Number(contacts[0], "r"), -(lambda - 200.0 / 3.0 * 0.01), 1e-8);
+         const auto nodes = Table(out / "solution.csv");
+         EXPECT_NEAR(Number(nodes[1], "ux"), 200.0 / 3.0 * 0.01 * 0.005, 1e-10);  // N L1 / EA1
+       }},
+      {"truss-3d-tripod.json",
+       [](const std::filesystem::path& out) {
+         // On the sphere's top at z = 0.7: r = -(lambda - 3 EA w (1/l - 1/L)) P at w = 0.7.
+         const double l = std::sqrt(1.0 + 0.49), length = std::sqrt(2.0);
+         const double lambda_c = 3.0 * 10.0 * 0.7 * (1.0 / l - 1.0 / length);
+         const auto contacts = Table(out / "contacts.csv");
+         ASSERT_EQ(contacts.size(), 1u);
+         const double lambda = Number(contacts[0], "lambda");
+         EXPECT_GT(lambda, lambda_c);
+         EXPECT_NEAR(Number(contacts[0], "r"), -(lambda - lambda_c), 1e-8);
+         const auto nodes = Table(out / "solution.csv");
+         EXPECT_NEAR(Number(nodes[0], "uz"), -0.3, 1e-10);
+         EXPECT_NEAR(Number(nodes[0], "ux"), 0.0, 1e-10);
+       }},
+      {"q4-block-on-floor.json",
+       [](const std::filesystem::path& out) {
+         // Uniaxial stress -10: uy = -10 y / 1000, ux = 0.25 * 10 x / 1000 (x fixed at x = 0).
+         for (const auto& row : Table(out / "solution.csv")) {
+           EXPECT_NEAR(Number(row, "uy"), -0.01 * Number(row, "y"), 1e-12);
+           EXPECT_NEAR(Number(row, "ux"), 0.0025 * Number(row, "x"), 1e-12);
+         }
+         double total = 0.0;  // the floor carries p * width * thickness = 2
+         for (const auto& row : Table(out / "contacts.csv")) total += Number(row, "r");
+         EXPECT_NEAR(total, -2.0, 1e-10);
+       }},
+      {"q4-block-gmsh.json",
+       [](const std::filesystem::path& out) {
+         const auto rows = Table(out / "solution.csv");
+         EXPECT_EQ(rows.size(), 6u);
+         for (const auto& row : rows) {
+           EXPECT_NEAR(Number(row, "uy"), -0.01 * Number(row, "y"), 1e-12);
+           EXPECT_NEAR(Number(row, "ux"), 0.0025 * Number(row, "x"), 1e-12);
+         }
+       }},
+      {"lcp-dense-2x2.json",
+       [](const std::filesystem::path& out) {
+         const auto rows = Table(out / "solution.csv");
+         ASSERT_EQ(rows.size(), 2u);
+         EXPECT_NEAR(Number(rows[0], "z"), 4.0 / 3.0, 1e-8);
+         EXPECT_NEAR(Number(rows[1], "z"), 7.0 / 3.0, 1e-8);
+       }},
+      {"lcp-sparse-4x4.json",
+       [](const std::filesystem::path& out) {
+         const auto rows = Table(out / "solution.csv");
+         ASSERT_EQ(rows.size(), 4u);
+         const double z[4] = {2.8, 0.0, 0.8, 1.2}, w[4] = {0.0, 0.4, 0.0, 0.0};
+         for (int i = 0; i < 4; ++i) {
+           EXPECT_NEAR(Number(rows[i], "z"), z[i], 1e-8) << i;
+           EXPECT_NEAR(Number(rows[i], "w"), w[i], 1e-8) << i;
+         }
+       }},
+  };
+  for (const auto& c : cases) {
+    for (const char* formulation : {"implicit-fb", "active-set"}) {
+      const auto out = TempDir("example_" + std::string(formulation) + "_" + c.file);
+      const Outcome o = RunCli("run --problem-file " + (kExamples / c.file).string() +
+                               " --formulation " + formulation + " --out " + out.string());
+      ASSERT_EQ(o.status, 0) << c.file << " " << formulation << "\n" << o.output;
+      for (const auto& row : Table(out / "steps.csv")) {
+        if (row.at("accepted") == "true") {
+          EXPECT_EQ(row.at("verified"), "true");
+        }
+      }
+      SCOPED_TRACE(c.file + " " + formulation);
+      c.check(out);
+    }
+  }
+}
+
+TEST(CliTest, BadProblemFilesExitWith2NamingFileAndField) {
+  const auto dir = TempDir("bad_files");
+  std::filesystem::create_directories(dir);
+  struct Case {
+    std::string name;
+    std::string text;
+    std::string expected;
+  } cases[] = {
+      {"malformed.json", "{\n\"kind\": \"lcp\",\n\"M\": [[1]] \"q\": [1]}",
+       "malformed.json: line 3, column"},
+      {"negative.json",
+       R"({"kind": "truss", "dimension": 2, "nodes": [{"id": 1, "x": [0, 0]},
+           {"id": 2, "x": [1, 0]}], "members": [{"nodes": [1, 2], "E": -1, "A": 1}],
+           "supports": [{"node": 1, "fixed": ["x", "y"]}, {"node": 2, "fixed": ["y"]}],
+           "length_scale": 1, "force_scale": 1, "analysis": "fixed-load"})",
+       "negative.json: /members/0/E: must be > 0, got -1"},
+      {"lcp.json", R"({"kind": "lcp", "M": [[1, 0], [0, 1]], "q": [1]})",
+       "lcp.json: /q: has 1 entries, M is 2 x 2"},
+      {"missing.json", "", "missing.json: cannot open"},
+  };
+  for (const auto& c : cases) {
+    const auto path = dir / c.name;
+    if (!c.text.empty()) std::ofstream(path) << c.text;
+    const Outcome o = RunCli("run --problem-file " + path.string() +
+                             " --formulation implicit-fb --out " + (dir / "out").string());
+    EXPECT_EQ(o.status, 2) << c.name << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.name << "\n" << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "work started for " << c.name;
+  }
+}
+
+TEST(CliTest, AnExportedProblemTracesTheSamePathAsTheNamedProblem) {
+  const auto dir = TempDir("export");
+  const std::string file = (dir / "p.json").string();
+  const Outcome e = RunCli("export --problem two-bar-obstacle --set height=0.4 --out " + file);
+  ASSERT_EQ(e.status, 0) << e.output;
+  const std::string tail = " --formulation implicit-fb --steps 30 --arc-length 0.02 --out ";
+  const Outcome a =
+      RunCli("run --problem two-bar-obstacle --set height=0.4" + tail + (dir / "a").string());
+  const Outcome b = RunCli("run --problem-file " + file + tail + (dir / "b").string());
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  const auto ra = Table(dir / "a" / "steps.csv");
+  const auto rb = Table(dir / "b" / "steps.csv");
+  ASSERT_EQ(ra.size(), rb.size());
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    for (const char* column : {"lambda", "control_disp", "iterations", "n_contact"}) {
+      EXPECT_EQ(ra[i].at(column), rb[i].at(column)) << "row " << i << " " << column;
+    }
+  }
+  // --set reaches a problem file's run parameters too.
+  const Outcome s = RunCli("run --problem-file " + file + " --set steps=3" +
+                           " --formulation implicit-fb --out " + (dir / "c").string());
+  ASSERT_EQ(s.status, 0) << s.output;
+  EXPECT_EQ(Table(dir / "c" / "steps.csv").size(), 3u);
 }
 
 TEST(CliTest, RunWritesTheFiveRecordFiles) {
