@@ -6,10 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "fixtures.h"
 #include "io/gmsh.h"
@@ -204,10 +203,10 @@ const char* const kLcp = R"({"kind": "lcp", "M": [[2, 1], [1, 2]], "q": [-5, -6]
 
 struct BadCase {
   std::string name;
-  const char* base;                    // a valid document, or nullptr: `text` is the file
-  std::function<void(json&)> mutate;   // applied to the base
-  std::string text;                    // the file's text when base is nullptr
-  std::string expected;                // must appear in the message after "FILE: "
+  const char* base;                   // a valid document, or nullptr: `text` is the file
+  std::function<void(json&)> mutate;  // applied to the base
+  std::string text;                   // the file's text when base is nullptr
+  std::string expected;               // must appear in the message after "FILE: "
 };
 
 std::vector<BadCase> BadCases() {
@@ -216,8 +215,8 @@ std::vector<BadCase> BadCases() {
        "line 3, column 15: malformed JSON"},
       {"overflow", nullptr, nullptr, R"({"kind": "lcp", "M": [[1e999]], "q": [1]})", "1e999"},
       {"not_an_object", nullptr, nullptr, "[1, 2]", "/: a problem file is a JSON object"},
-      {"missing_field", kTruss, [](json& j) { j.erase("members"); },
-       "", "/: missing field 'members'"},
+      {"missing_field", kTruss, [](json& j) { j.erase("members"); }, "",
+       "/: missing field 'members'"},
       {"unknown_field", kTruss, [](json& j) { j["memberz"] = 1; }, "", "/memberz: unknown field"},
       {"unknown_nested_field", kTruss, [](json& j) { j["members"][1]["Ee"] = 1; }, "",
        "/members/1/Ee: unknown field (valid here: nodes, E, A)"},
@@ -233,17 +232,25 @@ std::vector<BadCase> BadCases() {
        "/members/1/E: must be > 0, got -1"},
       {"zero_A", kTruss, [](json& j) { j["members"][0]["A"] = 0; }, "",
        "/members/0/A: must be > 0, got 0"},
-      {"zero_length_member", kTruss, [](json& j) { j["nodes"][1]["x"] = {0, 0}; }, "",
-       "/members/0/nodes: zero-length member"},
-      {"member_to_itself", kTruss, [](json& j) { j["members"][0]["nodes"] = {1, 1}; }, "",
-       "/members/0/nodes: a member joins node 1 to itself"},
+      {"zero_length_member", kTruss,
+       [](json& j) {
+         j["nodes"][1]["x"] = {0, 0};
+       },
+       "", "/members/0/nodes: zero-length member"},
+      {"member_to_itself", kTruss,
+       [](json& j) {
+         j["members"][0]["nodes"] = {1, 1};
+       },
+       "", "/members/0/nodes: a member joins node 1 to itself"},
       {"duplicate_node_id", kTruss, [](json& j) { j["nodes"][2]["id"] = 1; }, "",
        "/nodes/2/id: duplicate node id 1 (also /nodes/0)"},
       {"unknown_node_id", kTruss, [](json& j) { j["members"][0]["nodes"][1] = 99; }, "",
        "/members/0/nodes/1: unknown node id 99"},
       {"dangling_node", kTruss,
-       [](json& j) { j["nodes"].push_back({{"id", 4}, {"x", {2, 0}}}); }, "",
-       "/nodes/3: node 4 belongs to no member"},
+       [](json& j) {
+         j["nodes"].push_back({{"id", 4}, {"x", {2, 0}}});
+       },
+       "", "/nodes/3: node 4 belongs to no member"},
       {"pair_unknown_node", kTruss, [](json& j) { j["contact_pairs"][0]["node"] = 42; }, "",
        "/contact_pairs/0/node: unknown node id 42"},
       {"pair_unknown_obstacle", kTruss,
@@ -253,10 +260,15 @@ std::vector<BadCase> BadCases() {
        [](json& j) { j["contact_pairs"].push_back(j["contact_pairs"][0]); }, "",
        "/contact_pairs/1: node 3 is paired with obstacle \"wall\" twice"},
       {"pair_starts_inside", kTruss,
-       [](json& j) { j["obstacles"][0]["point"] = {0.9, 0}; }, "",
-       "/contact_pairs/0: node 3 starts inside obstacle \"wall\""},
-      {"zero_normal", kTruss, [](json& j) { j["obstacles"][0]["normal"] = {0, 0}; }, "",
-       "/obstacles/0/normal: must not be the zero vector"},
+       [](json& j) {
+         j["obstacles"][0]["point"] = {0.9, 0};
+       },
+       "", "/contact_pairs/0: node 3 starts inside obstacle \"wall\""},
+      {"zero_normal", kTruss,
+       [](json& j) {
+         j["obstacles"][0]["normal"] = {0, 0};
+       },
+       "", "/obstacles/0/normal: must not be the zero vector"},
       {"bad_radius", kTruss,
        [](json& j) {
          j["obstacles"][0] = {{"id", "wall"}, {"type", "ball"}, {"centre", {3, 0}}, {"radius", -2}};
@@ -275,12 +287,20 @@ std::vector<BadCase> BadCases() {
        },
        "", "/supports: the supports leave 1 rigid-body mode free (e.g. rotation about z)"},
       {"pairs_insufficient", kTruss,
-       [](json& j) { j["supports"] = json::array({{{"node", 2}, {"fixed", {"y"}}}}); }, "",
-       "/supports: neither the supports nor the contact pairs restrain 1 rigid-body mode"},
-      {"unknown_direction", kTruss, [](json& j) { j["supports"][0]["fixed"] = {"x", "w"}; }, "",
-       "/supports/0/fixed/1: unknown direction \"w\""},
-      {"load_on_support", kTruss, [](json& j) { j["loads"][0]["force"] = {1, 2}; }, "",
-       "/loads/0/force: a force in y on node 3, which is supported in y, would be lost"},
+       [](json& j) {
+         j["supports"] = json::array({{{"node", 2}, {"fixed", {"y"}}}});
+       },
+       "", "/supports: neither the supports nor the contact pairs restrain 1 rigid-body mode"},
+      {"unknown_direction", kTruss,
+       [](json& j) {
+         j["supports"][0]["fixed"] = {"x", "w"};
+       },
+       "", "/supports/0/fixed/1: unknown direction \"w\""},
+      {"load_on_support", kTruss,
+       [](json& j) {
+         j["loads"][0]["force"] = {1, 2};
+       },
+       "", "/loads/0/force: a force in y on node 3, which is supported in y, would be lost"},
       {"bad_analysis", kTruss, [](json& j) { j["analysis"] = "dynamic"; }, "",
        "/analysis: must be \"fixed-load\" or \"arc-length\""},
       {"zero_arc_length", kTruss, [](json& j) { j["arc_length"] = 0; }, "",
@@ -294,8 +314,10 @@ std::vector<BadCase> BadCases() {
       {"negative_scale", kTruss, [](json& j) { j["force_scale"] = -1; }, "",
        "/force_scale: must be > 0, got -1"},
       {"control_on_support", kTruss,
-       [](json& j) { j["control"] = {{"node", 3}, {"direction", "y"}}; }, "",
-       "/control/direction: direction y of node 3 is supported"},
+       [](json& j) {
+         j["control"] = {{"node", 3}, {"direction", "y"}};
+       },
+       "", "/control/direction: direction y of node 3 is supported"},
       {"zero_thickness", kQ4, [](json& j) { j["thickness"] = 0; }, "",
        "/thickness: must be > 0, got 0"},
       {"negative_E_q4", kQ4, [](json& j) { j["material"]["E"] = -5; }, "",
@@ -304,40 +326,77 @@ std::vector<BadCase> BadCases() {
        "/material/nu: must be in (-1, 0.5), got 0.5"},
       {"nu_minus_one", kQ4, [](json& j) { j["material"]["nu"] = -1; }, "",
        "/material/nu: must be in (-1, 0.5), got -1"},
-      {"clockwise", kQ4, [](json& j) { j["elements"][1]["nodes"] = {2, 5, 6, 3}; }, "",
-       "/elements/1/nodes: clockwise"},
-      {"zero_area", kQ4, [](json& j) { j["elements"][0]["nodes"] = {1, 2, 4, 5}; }, "",
-       "/elements/0/nodes: zero area"},
-      {"repeated_element_node", kQ4, [](json& j) { j["elements"][0]["nodes"] = {1, 2, 5, 1}; },
+      {"clockwise", kQ4,
+       [](json& j) {
+         j["elements"][1]["nodes"] = {2, 5, 6, 3};
+       },
+       "", "/elements/1/nodes: clockwise"},
+      {"zero_area", kQ4,
+       [](json& j) {
+         j["elements"][0]["nodes"] = {1, 2, 4, 5};
+       },
+       "", "/elements/0/nodes: zero area"},
+      {"repeated_element_node", kQ4,
+       [](json& j) {
+         j["elements"][0]["nodes"] = {1, 2, 5, 1};
+       },
        "", "/elements/0/nodes/3: node 1 appears twice"},
-      {"three_node_element", kQ4, [](json& j) { j["elements"][0]["nodes"] = {1, 2, 5}; }, "",
-       "/elements/0/nodes: a Q4 element has 4 nodes, got 3"},
-      {"edge_not_a_side", kQ4, [](json& j) { j["tractions"][0]["edges"][0] = {4, 6}; }, "",
-       "/tractions/0/edges/0: node 4 - node 6 is not a side of any element"},
-      {"interior_edge", kQ4, [](json& j) { j["tractions"][0]["edges"][0] = {2, 5}; }, "",
-       "/tractions/0/edges/0: node 2 - node 5 is an interior edge"},
+      {"three_node_element", kQ4,
+       [](json& j) {
+         j["elements"][0]["nodes"] = {1, 2, 5};
+       },
+       "", "/elements/0/nodes: a Q4 element has 4 nodes, got 3"},
+      {"edge_not_a_side", kQ4,
+       [](json& j) {
+         j["tractions"][0]["edges"][0] = {4, 6};
+       },
+       "", "/tractions/0/edges/0: node 4 - node 6 is not a side of any element"},
+      {"interior_edge", kQ4,
+       [](json& j) {
+         j["tractions"][0]["edges"][0] = {2, 5};
+       },
+       "", "/tractions/0/edges/0: node 2 - node 5 is an interior edge"},
       {"element_side_out_of_range", kQ4,
-       [](json& j) { j["tractions"][0] = {{"element_sides", {{0, 4}}}, {"traction", {0, 1}}}; },
+       [](json& j) {
+         j["tractions"][0] = {{"element_sides", {{0, 4}}}, {"traction", {0, 1}}};
+       },
        "", "/tractions/0/element_sides/0/1: a side is 0..3, got 4"},
       {"large_deformation", kQ4, [](json& j) { j["deformation"] = "large"; }, "",
        "/deformation: the plane-stress Q4 model is small-deformation only"},
       {"group_without_mesh", kQ4,
-       [](json& j) { j["supports"][0] = {{"group", "left"}, {"fixed", {"x"}}}; }, "",
-       "/supports/0/group: groups name physical groups of a Gmsh mesh"},
-      {"mesh_and_nodes", kQ4, [](json& j) { j["mesh"] = {{"file", "x.msh"}}; }, "",
-       "/nodes: give either \"mesh\" or \"nodes\" and \"elements\""},
-      {"lcp_q_size", kLcp, [](json& j) { j["q"] = {1, 2, 3}; }, "",
-       "/q: has 3 entries, M is 2 x 2"},
-      {"lcp_ragged", kLcp, [](json& j) { j["M"][1] = {1, 2, 3}; }, "",
-       "/M/1: has 3 entries, M has 2 rows: M must be square"},
+       [](json& j) {
+         j["supports"][0] = {{"group", "left"}, {"fixed", {"x"}}};
+       },
+       "", "/supports/0/group: groups name physical groups of a Gmsh mesh"},
+      {"mesh_and_nodes", kQ4,
+       [](json& j) {
+         j["mesh"] = {{"file", "x.msh"}};
+       },
+       "", "/nodes: give either \"mesh\" or \"nodes\" and \"elements\""},
+      {"lcp_q_size", kLcp,
+       [](json& j) {
+         j["q"] = {1, 2, 3};
+       },
+       "", "/q: has 3 entries, M is 2 x 2"},
+      {"lcp_ragged", kLcp,
+       [](json& j) {
+         j["M"][1] = {1, 2, 3};
+       },
+       "", "/M/1: has 3 entries, M has 2 rows: M must be square"},
       {"lcp_sparse_not_square", kLcp,
-       [](json& j) { j["M"] = {{"rows", 2}, {"cols", 3}, {"entries", json::array()}}; }, "",
-       "/M/cols: M must be square, got 2 x 3"},
+       [](json& j) {
+         j["M"] = {{"rows", 2}, {"cols", 3}, {"entries", json::array()}};
+       },
+       "", "/M/cols: M must be square, got 2 x 3"},
       {"lcp_entry_out_of_range", kLcp,
-       [](json& j) { j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{5, 0, 1.0}}}}; }, "",
-       "/M/entries/0/0: row 5 outside 0..1"},
+       [](json& j) {
+         j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{5, 0, 1.0}}}};
+       },
+       "", "/M/entries/0/0: row 5 outside 0..1"},
       {"lcp_duplicate_entry", kLcp,
-       [](json& j) { j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{0, 0, 1.0}, {0, 0, 2.0}}}}; },
+       [](json& j) {
+         j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{0, 0, 1.0}, {0, 0, 2.0}}}};
+       },
        "", "/M/entries/1: entry (0, 0) given twice (also /M/entries/0)"},
       {"lcp_wrong_M", kLcp, [](json& j) { j["M"] = 3; }, "",
        "/M: expected an array of rows (dense) or an object"},

@@ -550,8 +550,7 @@ int Main(int argc, char** argv) {
     if (command == "run") return Run(args);
     if (command == "compare") return Compare(args);
     if (command == "export") return Export(args);
-    throw UsageError("unknown command '" + command +
-                     "' (valid: list, run, compare, export, help)");
+    throw UsageError("unknown command '" + command + "' (valid: list, run, compare, export, help)");
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n" << kUsage;
     return kExitBadArguments;

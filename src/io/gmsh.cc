@@ -114,28 +114,45 @@ class Cursor {
 
 const char* ElementName(std::int64_t type) {
   switch (type) {
-    case 1: return "2-node line";
-    case 2: return "3-node triangle";
-    case 3: return "4-node quadrangle";
-    case 4: return "4-node tetrahedron";
-    case 5: return "8-node hexahedron";
-    case 6: return "6-node prism";
-    case 7: return "5-node pyramid";
-    case 8: return "3-node line";
-    case 9: return "6-node triangle";
-    case 10: return "9-node quadrangle";
-    case 15: return "1-node point";
-    case 16: return "8-node quadrangle";
-    default: return "element";
+    case 1:
+      return "2-node line";
+    case 2:
+      return "3-node triangle";
+    case 3:
+      return "4-node quadrangle";
+    case 4:
+      return "4-node tetrahedron";
+    case 5:
+      return "8-node hexahedron";
+    case 6:
+      return "6-node prism";
+    case 7:
+      return "5-node pyramid";
+    case 8:
+      return "3-node line";
+    case 9:
+      return "6-node triangle";
+    case 10:
+      return "9-node quadrangle";
+    case 15:
+      return "1-node point";
+    case 16:
+      return "8-node quadrangle";
+    default:
+      return "element";
   }
 }
 
 int NodesOf(std::int64_t type) {
   switch (type) {
-    case 1: return 2;
-    case 3: return 4;
-    case 15: return 1;
-    default: return 0;
+    case 1:
+      return 2;
+    case 3:
+      return 4;
+    case 15:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -171,7 +188,7 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
   }
   Cursor c(Tokenize(text, file), file);
   GmshMesh mesh;
-  std::map<std::pair<int, int>, std::string> names;        // (dim, physical tag) -> name
+  std::map<std::pair<int, int>, std::string> names;          // (dim, physical tag) -> name
   std::map<std::pair<int, int>, std::vector<int>> physical;  // (dim, entity) -> physical tags
   std::map<std::int64_t, int> node_index;
   bool have_entities = false, have_nodes = false, have_elements = false;
@@ -312,9 +329,11 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
         continue;
       }
       auto e = entity_edges.find(entity);
-      if (e != entity_edges.end()) g.edges.insert(g.edges.end(), e->second.begin(), e->second.end());
+      if (e != entity_edges.end())
+        g.edges.insert(g.edges.end(), e->second.begin(), e->second.end());
       auto n = entity_nodes.find(entity);
-      if (n != entity_nodes.end()) g.nodes.insert(g.nodes.end(), n->second.begin(), n->second.end());
+      if (n != entity_nodes.end())
+        g.nodes.insert(g.nodes.end(), n->second.begin(), n->second.end());
     }
     std::sort(g.nodes.begin(), g.nodes.end());
     g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());

@@ -62,8 +62,8 @@ Parameters RunParameters(double length_scale, double force_scale, const Loading&
   if (loading.kind == LoadingKind::kFixedLoad) {
     p.DeclareReal("load", loading.load, "lambda of the single fixed-load solve", -1e30, 1e30);
   } else {
-    p.DeclareReal("arc_length", loading.arc_length, "theta of (33), ||(du, dlambda)||_2", 0.0,
-                  1e30, true);
+    p.DeclareReal("arc_length", loading.arc_length, "theta of (33), ||(du, dlambda)||_2", 0.0, 1e30,
+                  true);
     p.DeclareInteger("steps", loading.steps, "arc-length steps", 1, 2000000000);
   }
   return p;
@@ -362,8 +362,9 @@ void CheckHeld(const BodyInput& in, const ElasticBody& body,
   }
   const JsonNode where = in.root().Has("supports") ? in.root().Field("supports") : in.root();
   if (rows.empty()) {
-    where.Fail("no supports and no contact pairs: nothing holds the body (its stiffness is "
-               "singular)");
+    where.Fail(
+        "no supports and no contact pairs: nothing holds the body (its stiffness is "
+        "singular)");
   }
   Mat constraints(static_cast<Eigen::Index>(rows.size()), m);
   for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -434,9 +435,8 @@ void ReadControl(const BodyInput& in, const DofMap& dofs, Problem* problem) {
         .Fail(std::string("direction ") + kDirectionNames[c] + " of " + in.NodeName(node) +
               " is supported: there is no displacement to record");
   }
-  problem->control_label = OptionalString(*control, "label",
-                                          std::string(kDirectionNames[c]) + "-displacement of " +
-                                              in.NodeName(node));
+  problem->control_label = OptionalString(
+      *control, "label", std::string(kDirectionNames[c]) + "-displacement of " + in.NodeName(node));
 }
 
 // The fields every body problem shares, after the body is built.
@@ -468,10 +468,10 @@ Problem FinishBody(BodyInput& in, std::shared_ptr<const ElasticBody> body, const
 
 Problem ReadTruss(const JsonNode& root, const std::string& file,
                   const std::map<std::string, std::string>& settings) {
-  root.ExpectObject({"kind", "version", "name", "description", "units", "source", "length_scale",
-                     "force_scale", "analysis", "load", "arc_length", "steps", "control",
-                     "dimension", "nodes", "members", "supports", "loads", "obstacles",
-                     "contact_pairs"});
+  root.ExpectObject({"kind",       "version",      "name",        "description", "units",
+                     "source",     "length_scale", "force_scale", "analysis",    "load",
+                     "arc_length", "steps",        "control",     "dimension",   "nodes",
+                     "members",    "supports",     "loads",       "obstacles",   "contact_pairs"});
   const JsonNode dimension = root.Field("dimension");
   const std::int64_t dim = dimension.Integer();
   if (dim != 2 && dim != 3) dimension.Fail("must be 2 or 3, got " + std::to_string(dim));
@@ -501,10 +501,10 @@ Problem ReadTruss(const JsonNode& root, const std::string& file,
   CheckConnected(in, uses, "member");
   auto body = std::make_shared<Truss>(in.nodes.coordinates, list, in.ReadSupports());
   Problem problem = FinishBody(in, body, Vec::Zero(body->num_dofs()), file, settings);
-  problem.description = OptionalString(root, "description",
-                                       std::to_string(dim) + "-D truss, " +
-                                           std::to_string(in.nodes.ids.size()) + " nodes, " +
-                                           std::to_string(list.size()) + " members");
+  problem.description =
+      OptionalString(root, "description",
+                     std::to_string(dim) + "-D truss, " + std::to_string(in.nodes.ids.size()) +
+                         " nodes, " + std::to_string(list.size()) + " members");
   return problem;
 }
 
@@ -533,13 +533,13 @@ std::string ElementProblem(const Mat& xy, const PlaneStressQ4::Element& e) {
   return "";
 }
 
-Problem ReadPlaneStress(const JsonNode& root, const std::string& file,
-                        const std::string& directory,
+Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std::string& directory,
                         const std::map<std::string, std::string>& settings) {
-  root.ExpectObject({"kind", "version", "name", "description", "units", "source", "length_scale",
-                     "force_scale", "analysis", "load", "arc_length", "steps", "control",
-                     "deformation", "thickness", "material", "nodes", "elements", "mesh",
-                     "supports", "loads", "tractions", "obstacles", "contact_pairs"});
+  root.ExpectObject({"kind",       "version",      "name",        "description",  "units",
+                     "source",     "length_scale", "force_scale", "analysis",     "load",
+                     "arc_length", "steps",        "control",     "deformation",  "thickness",
+                     "material",   "nodes",        "elements",    "mesh",         "supports",
+                     "loads",      "tractions",    "obstacles",   "contact_pairs"});
   if (auto d = root.Optional("deformation")) {
     if (d->String() != "small") {
       d->Fail("the plane-stress Q4 model is small-deformation only: must be \"small\", got \"" +
@@ -665,10 +665,10 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file,
             index = static_cast<std::size_t>(e);
           }
           if (index >= elements.size()) {
-            side.At(0).Fail(in.mesh ? "no quadrangle with Gmsh tag " + std::to_string(e)
-                                    : "no element " + std::to_string(e) + " (elements are " +
-                                          "numbered 0.." + std::to_string(elements.size() - 1) +
-                                          ")");
+            side.At(0).Fail(in.mesh
+                                ? "no quadrangle with Gmsh tag " + std::to_string(e)
+                                : "no element " + std::to_string(e) + " (elements are " +
+                                      "numbered 0.." + std::to_string(elements.size() - 1) + ")");
           }
           const std::int64_t s = side.At(1).Integer();
           if (s < 0 || s > 3) side.At(1).Fail("a side is 0..3, got " + std::to_string(s));
@@ -737,14 +737,14 @@ Problem ReadLcp(const JsonNode& root, const std::string& file,
       if (e.Size() != 3) e.Fail("an entry is [row, col, value] (0-based)");
       const std::int64_t i = e.At(0).Integer();
       const std::int64_t j = e.At(1).Integer();
-      if (i < 0 || i >= n) e.At(0).Fail("row " + std::to_string(i) + " outside 0.." +
-                                        std::to_string(n - 1));
-      if (j < 0 || j >= n) e.At(1).Fail("column " + std::to_string(j) + " outside 0.." +
-                                        std::to_string(n - 1));
+      if (i < 0 || i >= n)
+        e.At(0).Fail("row " + std::to_string(i) + " outside 0.." + std::to_string(n - 1));
+      if (j < 0 || j >= n)
+        e.At(1).Fail("column " + std::to_string(j) + " outside 0.." + std::to_string(n - 1));
       auto [it, inserted] = seen.emplace(std::make_pair(i, j), k);
       if (!inserted) {
-        e.Fail("entry (" + std::to_string(i) + ", " + std::to_string(j) +
-               ") given twice (also " + m.where() + "/entries/" + std::to_string(it->second) + ")");
+        e.Fail("entry (" + std::to_string(i) + ", " + std::to_string(j) + ") given twice (also " +
+               m.where() + "/entries/" + std::to_string(it->second) + ")");
       }
       entries.emplace_back(static_cast<int>(i), static_cast<int>(j), e.At(2).Number());
     }
@@ -772,8 +772,7 @@ Problem ReadLcp(const JsonNode& root, const std::string& file,
   problem.loading = LoadingKind::kFixedLoad;
   problem.load = 0.0;  // f = 0: (29) at lambda = 0 is w = M z + q = -r
   problem.steps = 1;
-  problem.description = OptionalString(
-      root, "description", "LCP, n = " + std::to_string(n));
+  problem.description = OptionalString(root, "description", "LCP, n = " + std::to_string(n));
   return problem;
 }
 
@@ -863,23 +862,22 @@ void WriteBody(const Problem& problem, OJson* j) {
   const ElasticBody& body = model.body();
   const int dim = body.dim();
   OJson nodes = OJson::array();
-  for (int n = 0; n < body.num_nodes(); ++n) nodes.push_back({{"id", n}, {"x", ToJson(body.reference(n))}});
+  for (int n = 0; n < body.num_nodes(); ++n)
+    nodes.push_back({{"id", n}, {"x", ToJson(body.reference(n))}});
   if (const auto* truss = dynamic_cast<const Truss*>(&body)) {
     (*j)["kind"] = "truss";
     (*j)["dimension"] = dim;
     (*j)["nodes"] = nodes;
     OJson members = OJson::array();
     for (const auto& m : truss->members()) {
-      members.push_back(
-          {{"nodes", {m.node_i, m.node_j}}, {"E", m.youngs_modulus}, {"A", m.area}});
+      members.push_back({{"nodes", {m.node_i, m.node_j}}, {"E", m.youngs_modulus}, {"A", m.area}});
     }
     (*j)["members"] = members;
   } else if (const auto* q4 = dynamic_cast<const PlaneStressQ4*>(&body)) {
     (*j)["kind"] = "plane-stress-q4";
     (*j)["deformation"] = "small";
     (*j)["thickness"] = q4->material().thickness;
-    (*j)["material"] = {{"E", q4->material().youngs_modulus},
-                        {"nu", q4->material().poisson_ratio}};
+    (*j)["material"] = {{"E", q4->material().youngs_modulus}, {"nu", q4->material().poisson_ratio}};
     (*j)["nodes"] = nodes;
     OJson elements = OJson::array();
     for (const auto& e : q4->elements()) elements.push_back({{"nodes", {e[0], e[1], e[2], e[3]}}});
@@ -937,9 +935,8 @@ void WriteBody(const Problem& problem, OJson* j) {
     for (int n = 0; n < body.num_nodes(); ++n) {
       for (int c = 0; c < dim; ++c) {
         if (body.dofs().dof(n, c) == problem.control_dof) {
-          (*j)["control"] = {{"node", n},
-                             {"direction", kDirectionNames[c]},
-                             {"label", problem.control_label}};
+          (*j)["control"] = {
+              {"node", n}, {"direction", kDirectionNames[c]}, {"label", problem.control_label}};
         }
       }
     }
@@ -949,7 +946,8 @@ void WriteBody(const Problem& problem, OJson* j) {
 }  // namespace
 
 std::string ProblemToJson(const Problem& problem) {
-  if (problem.model == nullptr) throw std::invalid_argument("ProblemToJson: the problem has no model");
+  if (problem.model == nullptr)
+    throw std::invalid_argument("ProblemToJson: the problem has no model");
   OJson j;
   j["kind"] = "";  // first in the file; set below
   j["version"] = 1;
