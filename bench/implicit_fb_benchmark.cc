@@ -1,12 +1,21 @@
-// Google Benchmark timings of the implicit smoothed-FB formulation (issue 2 targets):
-//  - P1 `block` cold solve for n = 25, 50, 100, 200 (the report's section 5.1 start);
+// Google Benchmark timings of the implicit smoothed-FB formulation (issue 2 and issue 5
+// targets), each for the linear solvers named in the benchmark's name (`cholmod`, the default
+// condensed Cholesky, and `klu`, the full-system LU):
+//  - P1 `block` cold solve for n = 25 ... 400 (the report's section 5.1 start), with the peak
+//    resident memory of one solve (VmHWM after resetting the high-water mark);
 //  - one warm P3 `arch-curved` step, replayed from an accepted state of the path;
-//  - time per Newton iteration against one sparse factorisation + solve of the same Jacobian.
+//  - the whole P2 `arch-flat` and P3 paths, with the median Newton iterations per step;
+//  - time per Newton iteration against one sparse LU factorisation + solve of the same
+//    Jacobian (KLU refactorisation with the previous pivot order, the strictest comparator).
 // A run whose answer fails the verdict is skipped with an error, not timed.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/timer.h"
 #include "formulations/implicit_fb/implicit_fb.h"
@@ -21,21 +30,57 @@ namespace {
 
 constexpr double kTolerance = 1e-8;
 
-ImplicitFbOptions Options(const std::string& solver = "newton") {
+ImplicitFbOptions Options(const std::string& linear_solver) {
   ImplicitFbOptions o;
-  o.solver = solver;
+  o.solver = "newton";
+  o.solver_options.linear_solver = linear_solver;
   return o;
 }
 
+// Peak resident memory of the process (Linux): writing 5 to clear_refs resets VmHWM to the
+// current resident size, so VmHWM after a solve is that solve's peak.
+bool ResetPeakMemory() {
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  return static_cast<bool>(out);
+}
+double StatusFieldMb(const std::string& field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(field + ":", 0) == 0) {
+      std::istringstream fields(line.substr(field.size() + 1));
+      double kb = 0.0;
+      fields >> kb;
+      return kb / 1024.0;
+    }
+  }
+  return -1.0;
+}
+
+// Newton iterations of the accepted arc-length steps of a path.
+class IterationCounter final : public PathObserver {
+ public:
+  void OnAttempt(const StepAttempt& attempt) override {
+    if (attempt.accepted) iterations.push_back(attempt.result.counts.iterations);
+  }
+  double Median() const {
+    if (iterations.empty()) return 0.0;
+    std::vector<int> v = iterations;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  }
+  std::vector<int> iterations;
+};
+
 // P1 from the cold start, a fresh formulation per run (its first solve includes the symbolic
 // analysis, as a user's single solve does).
-void BM_BlockColdSolve(benchmark::State& state) {
+void BlockColdSolve(benchmark::State& state, const std::string& linear_solver) {
   const Problem p = MakeProblem("block", {{"n", std::to_string(state.range(0))}});
   PathOptions options;
   options.start = StartKind::kCold;
-  int iterations = 0;
   for (auto _ : state) {
-    ImplicitFb formulation(Options());
+    ImplicitFb formulation(Options(linear_solver));
     const PathSummary s = SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), p.load,
                                          formulation, options, nullptr);
     if (s.status != Status::kConverged) {
@@ -43,26 +88,36 @@ void BM_BlockColdSolve(benchmark::State& state) {
       return;
     }
   }
+  // One more solve, untimed, for the iteration count and the peak memory.
+  const double rss_before = StatusFieldMb("VmRSS");
+  const bool reset = ResetPeakMemory();
+  int iterations = 0;
   {
-    ImplicitFb formulation(Options());
+    ImplicitFb formulation(Options(linear_solver));
     StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
                      p.scales};
     StartPoint cold;
     cold.kind = StartKind::kCold;
     iterations = formulation.Solve(step, cold).counts.iterations;
   }
+  const double peak = StatusFieldMb("VmHWM");
   state.counters["d"] = p.model->num_dofs();
   state.counters["newton_iterations"] = iterations;
+  if (reset && peak > 0.0) {
+    state.counters["peak_rss_mb"] = peak;
+    // The solve's own memory: peak minus what the process held before it (the problem).
+    state.counters["solve_peak_mb"] = peak - rss_before;
+    state.counters["solve_bytes_per_dof"] = (peak - rss_before) * 1048576.0 / p.model->num_dofs();
+  }
 }
-BENCHMARK(BM_BlockColdSolve)->Arg(25)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 
 // A warm P3 step in replay mode: the state after accepted step `k` of the reference path and
 // the increment that led there; the timed work is step k + 1 with a formulation whose pattern
 // is already analysed (the steady state of a path).
-void BM_ArchCurvedWarmStep(benchmark::State& state) {
+void ArchCurvedWarmStep(benchmark::State& state, const std::string& linear_solver) {
   const Problem p = MakeProblem("arch-curved");
   const int k = static_cast<int>(state.range(0));
-  ImplicitFb reference(Options());
+  ImplicitFb reference(Options("klu"));
   PathRecorder recorder;
   PathOptions options;
   options.arc_length = p.arc_length;
@@ -78,7 +133,7 @@ void BM_ArchCurvedWarmStep(benchmark::State& state) {
   start.du = recorder.increments[k - 1].du;
   start.dlambda = recorder.increments[k - 1].dlambda;
   start.r = base.r;
-  ImplicitFb formulation(Options());
+  ImplicitFb formulation(Options(linear_solver));
   StepResult result = formulation.Solve(step, start);  // analyses the pattern
   for (auto _ : state) {
     result = formulation.Solve(step, start);
@@ -95,38 +150,52 @@ void BM_ArchCurvedWarmStep(benchmark::State& state) {
   }
   state.counters["newton_iterations"] = result.counts.iterations;
 }
-BENCHMARK(BM_ArchCurvedWarmStep)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
-// The whole P3 path of the report's Table 2 (1604 steps), kinks located.
-void BM_ArchCurvedPath(benchmark::State& state) {
-  const Problem p = MakeProblem("arch-curved");
+// A whole arc-length path (P3: the report's Table 2, 1604 steps; P2: its default steps), kinks
+// located, with the median Newton iterations of the accepted steps.
+void ArchPath(benchmark::State& state, const std::string& problem,
+              const std::string& linear_solver) {
+  const Problem p = MakeProblem(problem);
   PathOptions options;
   options.arc_length = p.arc_length;
   options.max_steps = p.steps;
+  IterationCounter counter;
   for (auto _ : state) {
-    ImplicitFb formulation(Options());
+    ImplicitFb formulation(Options(linear_solver));
+    counter.iterations.clear();
     const PathSummary s =
-        TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), formulation, options, nullptr);
+        TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), formulation, options, &counter);
     if (s.status != Status::kConverged) {
       state.SkipWithError(("path failed: " + s.message).c_str());
       return;
     }
   }
   state.counters["steps"] = p.steps;
+  state.counters["median_iterations"] = counter.Median();
 }
-BENCHMARK(BM_ArchCurvedPath)->Unit(benchmark::kMillisecond)->Iterations(3);
 
-// Time per Newton iteration of a solve divided by the time of one factorisation + solve of the
-// Jacobian at its answer (same pattern, same values, pattern analysed beforehand). The
-// benchmark's own time is the factorisation + solve; the counters carry the comparison.
+// Time per Newton iteration of a solve (with `linear_solver`) divided by the time of one LU
+// factorisation + solve of the Jacobian at its answer (KLU, pattern analysed beforehand,
+// refactorisation with the previous pivot order). The benchmark's own time is that
+// factorisation + solve; the counters carry the comparison:
+//  - ratio: whole solves (start, bookkeeping included) / iterations / LU;
+//  - kernel_ratio: one iteration's work alone (Jacobian, factorisation, solve, one residual).
 void IterationOverFactorization(benchmark::State& state, const StepProblem& step,
-                                const StartPoint& start) {
-  ImplicitFb formulation(Options());
+                                const StartPoint& start, const std::string& linear_solver) {
+  ImplicitFb formulation(Options(linear_solver));
   StepResult result = formulation.Solve(step, start);  // analysis outside the measurement
-  Stopwatch clock;
-  const int repeats = 200;
-  for (int i = 0; i < repeats; ++i) result = formulation.Solve(step, start);
-  const double per_iteration = clock.Seconds() / repeats / result.counts.iterations;
+  // Repeat for at least 0.5 s (and 3 solves).
+  auto repeat_for = [](auto&& work) {
+    Stopwatch clock;
+    int repeats = 0;
+    do {
+      work();
+      ++repeats;
+    } while (repeats < 3 || clock.Seconds() < 0.5);
+    return clock.Seconds() / repeats;
+  };
+  const double per_solve = repeat_for([&] { result = formulation.Solve(step, start); });
+  const double per_iteration = per_solve / result.counts.iterations;
   if (!Judge(step, result.point, kTolerance).verified) {
     state.SkipWithError("step not verified");
     return;
@@ -140,58 +209,57 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
       result.point.dlambda, 0.0;
   SpMat jacobian;
   system.Jacobian(x, &jacobian);
-  auto linear = MakeLinearSolver(formulation.options().solver_options.linear_solver);
+  auto lu = MakeLinearSolver("klu");
   Vec rhs = Vec::Ones(l.size()), solution;
-  linear->Factorize(jacobian);  // analysis outside the measurement
-  clock.Restart();
-  for (int i = 0; i < repeats; ++i) {
-    linear->Factorize(jacobian);
-    linear->Solve(rhs, &solution);
-  }
-  const double factorize_solve = clock.Seconds() / repeats;
+  lu->Factorize(jacobian);  // analysis outside the measurement
+  const double factorize_solve = repeat_for([&] {
+    lu->Factorize(jacobian);
+    lu->Solve(rhs, &solution);
+  });
   // The work of one Newton iteration without the per-step overhead (start point, initial
   // residual, bookkeeping): Jacobian, factorisation, solve, one trial residual (whose value is
-  // the next iteration's right-hand side).
+  // the next iteration's right-hand side), with the solver under test.
+  auto linear = MakeLinearSolver(linear_solver);
+  linear->SetStructure(system.structure());
   Vec residual, step_dx;
   system.Residual(x, &residual);
-  clock.Restart();
-  for (int i = 0; i < repeats; ++i) {
+  linear->Factorize(jacobian);
+  const double iteration_kernel = repeat_for([&] {
     system.Jacobian(x, &jacobian);
     linear->Factorize(jacobian);
     linear->Solve(residual, &step_dx);
     system.Residual(x, &residual);
-  }
-  const double iteration_kernel = clock.Seconds() / repeats;
+  });
   for (auto _ : state) {
-    linear->Factorize(jacobian);
-    linear->Solve(rhs, &solution);
+    lu->Factorize(jacobian);
+    lu->Solve(rhs, &solution);
     benchmark::DoNotOptimize(solution.data());
   }
   state.counters["newton_iterations"] = result.counts.iterations;
   state.counters["per_newton_iteration_us"] = per_iteration * 1e6;
-  state.counters["factorize_solve_us"] = factorize_solve * 1e6;
+  state.counters["lu_factorize_solve_us"] = factorize_solve * 1e6;
   state.counters["ratio"] = per_iteration / factorize_solve;
   state.counters["iteration_kernel_us"] = iteration_kernel * 1e6;
   state.counters["kernel_ratio"] = iteration_kernel / factorize_solve;
 }
 
-void BM_IterationOverFactorizationBlock(benchmark::State& state) {
-  const Problem p = MakeProblem("block");
+void IterationOverFactorizationBlock(benchmark::State& state, const std::string& linear_solver) {
+  const Problem p = MakeProblem("block", {{"n", std::to_string(state.range(0))}});
   StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
                    p.scales};
   StartPoint cold;
   cold.kind = StartKind::kCold;
-  IterationOverFactorization(state, step, cold);
+  IterationOverFactorization(state, step, cold, linear_solver);
 }
-BENCHMARK(BM_IterationOverFactorizationBlock)->Unit(benchmark::kMillisecond);
 
-void BM_IterationOverFactorizationArchCurved(benchmark::State& state) {
+void IterationOverFactorizationArchCurved(benchmark::State& state,
+                                          const std::string& linear_solver) {
   const Problem p = MakeProblem("arch-curved");
-  ImplicitFb reference(Options());
+  ImplicitFb reference(Options("klu"));
   PathRecorder recorder;
   PathOptions options;
   options.arc_length = p.arc_length;
-  options.max_steps = 100;
+  options.max_steps = static_cast<int>(state.range(0));
   TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), reference, options, &recorder);
   StepProblem step{p.model.get(), recorder.states.back(), StepConstraint::ArcLength(p.arc_length),
                    p.scales};
@@ -199,11 +267,56 @@ void BM_IterationOverFactorizationArchCurved(benchmark::State& state) {
   start.du = recorder.increments.back().du;
   start.dlambda = recorder.increments.back().dlambda;
   start.r = recorder.states.back().r;
-  IterationOverFactorization(state, step, start);
+  IterationOverFactorization(state, step, start, linear_solver);
 }
-BENCHMARK(BM_IterationOverFactorizationArchCurved)->Unit(benchmark::kMicrosecond);
+
+void RegisterAll() {
+  // The default first, then the full-system LU for comparison (n = 400 only with the default:
+  // KLU needs minutes there).
+  for (const std::string solver : {"cholmod", "klu"}) {
+    auto* b = benchmark::RegisterBenchmark(("BM_BlockColdSolve/" + solver).c_str(),
+                                           BlockColdSolve, solver);
+    for (int n : {25, 50, 100, 200}) b->Arg(n);
+    if (solver == "cholmod") b->Arg(400);
+    b->Unit(benchmark::kMillisecond);
+  }
+  for (const std::string solver : {"cholmod", "klu"}) {
+    benchmark::RegisterBenchmark(("BM_ArchCurvedWarmStep/" + solver).c_str(), ArchCurvedWarmStep,
+                                 solver)
+        ->Arg(100)
+        ->Arg(1000)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  for (const std::string solver : {"cholmod", "klu"}) {
+    for (const std::string problem : {"arch-curved", "arch-flat"}) {
+      benchmark::RegisterBenchmark(("BM_ArchPath/" + problem + "/" + solver).c_str(), ArchPath,
+                                   problem, solver)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(3);
+    }
+  }
+  for (const std::string solver : {"cholmod", "klu"}) {
+    benchmark::RegisterBenchmark(("BM_IterationOverFactorizationBlock/" + solver).c_str(),
+                                 IterationOverFactorizationBlock, solver)
+        ->Arg(50)
+        ->Arg(200)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_IterationOverFactorizationArchCurved/" + solver).c_str(),
+                                 IterationOverFactorizationArchCurved, solver)
+        ->Arg(100)
+        ->Arg(1000)
+        ->Unit(benchmark::kMicrosecond);
+  }
+}
 
 }  // namespace
 }  // namespace cb
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  cb::RegisterAll();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

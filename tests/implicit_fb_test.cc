@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -11,6 +12,8 @@
 #include "fixtures.h"
 #include "path/path.h"
 #include "problems/problem.h"
+#include "solvers/condensed_cholesky.h"
+#include "solvers/linear_solver.h"
 #include "verdict/verdict.h"
 
 namespace cb {
@@ -237,6 +240,91 @@ INSTANTIATE_TEST_SUITE_P(EtaAndSolver, BlockColdSolveTest,
                            return "eta" + std::to_string(std::get<0>(info.param)) + "_" +
                                   std::get<1>(info.param);
                          });
+
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+// The condensed Newton step ("cholmod": elimination of g and r, Cholesky of the stiffness plus
+// the pair springs, border by block elimination, refinement on the full system) equals the
+// full-system LU step up to rounding, along the iterates of a solve (far from and close to the
+// answer, where closed pairs have dF3/dr -> 0 and their springs are capped).
+void ExpectCondensedStepsMatchFullSteps(const StepProblem& step, const StartPoint& start,
+                                        EtaCase eta, bool expect_condensed) {
+  ImplicitFbOptions o;
+  o.eta = eta;
+  const ImplicitFbStart initial = MakeImplicitFbStart(step, start, o);
+  ImplicitFbSystem system(step, EtaEquation{eta, initial.gamma});
+  auto condensed = MakeLinearSolver("cholmod");
+  auto lu = MakeLinearSolver("klu");
+  condensed->SetStructure(system.structure());
+  ASSERT_NE(system.structure(), nullptr);
+  Vec x = initial.x, f, dx, dx_lu;
+  SpMat jac;
+  int compared = 0;
+  for (int k = 0; k < 40; ++k) {
+    system.Residual(x, &f);
+    if (f.cwiseAbs().maxCoeff() < 1e-11) break;
+    system.Jacobian(x, &jac);
+    if (!jac.coeffs().allFinite()) break;
+    ASSERT_TRUE(lu->Factorize(jac)) << "iterate " << k << ": " << lu->message();
+    ASSERT_TRUE(lu->Solve(f, &dx_lu));
+    ASSERT_TRUE(condensed->Factorize(jac)) << condensed->message();
+    ASSERT_TRUE(condensed->Solve(f, &dx)) << condensed->message();
+    // Both answers carry rounding of about eps cond(J) relative to the iterate's scale.
+    EXPECT_LE((dx - dx_lu).norm(), 1e-9 * dx_lu.norm() + 1e-13 * (1.0 + x.norm()))
+        << "iterate " << k;
+    ++compared;
+    // Newton steps, damped to at most 0.5 in any unknown (far from the answer full steps can
+    // leave the region where the model is defined).
+    x -= std::min(1.0, 0.5 / dx_lu.lpNorm<Eigen::Infinity>()) * dx_lu;
+  }
+  EXPECT_GE(compared, 3);
+  const CondensedSolverStats* stats = CondensedStats(*condensed);
+  ASSERT_NE(stats, nullptr);
+  if (expect_condensed) {
+    EXPECT_EQ(stats->condensed_factorizations, compared);
+    EXPECT_EQ(stats->fallback_solves, 0);
+  }
+}
+
+TEST(ImplicitFbCondensedTest, BlockColdStartStepsMatch) {
+  // n = 8: Kc factorised whole; n = 30 (d = 1922, 62 contact dofs): the contact-block path.
+  for (const char* n : {"8", "30"}) {
+    const Problem p = MakeProblem("block", {{"n", n}});
+    StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
+    StartPoint cold;
+    cold.kind = StartKind::kCold;
+    for (EtaCase eta : {EtaCase::kCase1, EtaCase::kNonsmooth}) {
+      SCOPED_TRACE(std::string("n = ") + n + ", eta " + std::to_string(static_cast<int>(eta)));
+      ExpectCondensedStepsMatchFullSteps(step, cold, eta, true);
+    }
+  }
+}
+
+TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
+  // The curved obstacle adds the curvature term to the stiffness; a warm start from a state in
+  // contact. The kink row makes one pair's spring negative: condensed or fallback, the step is
+  // the same.
+  const Problem p = SmallArch();
+  const int d = p.model->num_dofs();
+  const int nc = p.model->num_pairs();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  State base = ZeroState(*p.model);
+  for (int i = 0; i < d; ++i) base.u[i] = 0.02 * unit(rng);
+  for (int q = 0; q < nc; ++q) base.r[q] = q % 2 == 0 ? -std::abs(unit(rng)) : 0.0;
+  base.lambda = 3.0;
+  for (ConstraintKind kind : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
+                              ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+    SCOPED_TRACE(ToString(kind));
+    StepProblem step{p.model.get(), base, testing::ConstraintOf(kind, nc), {0.1, 2.0}};
+    StartPoint warm;
+    warm.du = Vec::Constant(d, 0.001);
+    warm.dlambda = 0.05;
+    warm.r = base.r;
+    ExpectCondensedStepsMatchFullSteps(step, warm, EtaCase::kCase1,
+                                       kind != ConstraintKind::kKink);
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace cb

@@ -15,6 +15,7 @@
 
 #include "core/types.h"
 #include "solvers/equation_solver.h"
+#include "solvers/condensed_cholesky.h"
 #include "solvers/equation_system.h"
 #include "solvers/linear_solver.h"
 
@@ -466,7 +467,9 @@ TEST_P(LinearSolverTest, SamePatternWithPivotsThatTurnBad) {
   EXPECT_EQ(solver_->num_analyses(), 1);
   // klu: full factorisations for the first matrix and for the two whose old pivot failed (a
   // zero pivot; then growth 1e14); the other two reuse the order.
-  EXPECT_EQ(solver_->num_full_factorizations(), GetParam() == "klu" ? 3 : 5);
+  // cholmod: no structure given, so the same through its fallback, klu.
+  const bool reuses = GetParam() == "klu" || GetParam() == "cholmod";
+  EXPECT_EQ(solver_->num_full_factorizations(), reuses ? 3 : 5);
 }
 
 TEST_P(LinearSolverTest, CountsFullFactorisations) {
@@ -480,7 +483,8 @@ TEST_P(LinearSolverTest, CountsFullFactorisations) {
     ASSERT_TRUE(solver_->Solve(b, &x));
     EXPECT_LE((scaled * x - b).norm() / b.norm(), 1e-12);
   }
-  const bool reuses = GetParam() == "klu";
+  // cholmod: these matrices have no block structure, so its fallback (klu) factorises them.
+  const bool reuses = GetParam() == "klu" || GetParam() == "cholmod";
   EXPECT_EQ(solver_->num_full_factorizations(), reuses ? 1 : 4);
   // A new pattern: analysed, so factorised afresh.
   ASSERT_TRUE(solver_->Factorize(RandomSparseMatrix(100, 3, 10, 4))) << solver_->message();
@@ -621,13 +625,152 @@ TEST_P(LinearSolverTest, SolvesAContactJacobianSequenceAccurately) {
 INSTANTIATE_TEST_SUITE_P(AllLinearSolvers, LinearSolverTest,
                          ::testing::ValuesIn(LinearSolverNames()), ParamName);
 
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+// A Jacobian with the block form of JacobianStructure: A symmetric positive definite (a chain
+// with 2 dofs per node), pairs on `nc` distinct dofs (two entries each), E = I,
+// Da <= 0 <= Db with every fourth pair closed (Db = 0, as the nonsmooth rows) and every fourth
+// open (Da = 0), and two border columns / rows like (dlambda, rho) with the eta and arc-length
+// rows. `spread` places the pairs every `spread` dofs.
+SpMat StructuredJacobian(int d, int nc, int spread, double coupling, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.2, 1.0);
+  const int n = d + 2 * nc + 2;
+  std::vector<Triplet> e;
+  for (int j = 0; j < d; ++j) {
+    e.emplace_back(j, j, 4.0 + u(rng));
+    if (j + 1 < d) {
+      const double v = -u(rng);
+      e.emplace_back(j + 1, j, v);
+      e.emplace_back(j, j + 1, v);
+    }
+    if (j + 2 < d) {
+      const double v = 0.5 * u(rng);
+      e.emplace_back(j + 2, j, v);
+      e.emplace_back(j, j + 2, v);
+    }
+  }
+  const int dl = d + 2 * nc, rho = dl + 1;
+  for (int p = 0; p < nc; ++p) {
+    const int dof = (p * spread) % (d - 1);
+    const double g0 = u(rng), g1 = u(rng) - 0.6;
+    e.emplace_back(d + p, dof, g0);      // R2: G
+    e.emplace_back(d + p, dof + 1, g1);
+    e.emplace_back(dof, d + nc + p, -coupling * g0);  // R1: H = -coupling G^T
+    e.emplace_back(dof + 1, d + nc + p, -coupling * g1);
+    e.emplace_back(d + p, d + p, 1.0);  // E
+    const double da = p % 4 == 2 ? 0.0 : -u(rng);
+    const double db = p % 4 == 0 ? 0.0 : u(rng);
+    e.emplace_back(d + nc + p, d + p, da);
+    e.emplace_back(d + nc + p, d + nc + p, db);
+    e.emplace_back(d + nc + p, rho, 0.1 * u(rng));    // U3
+    e.emplace_back(dl, d + p, -0.01 * u(rng));       // eta row: Vg, Vr
+    e.emplace_back(dl, d + nc + p, -0.01 * u(rng));
+  }
+  e.emplace_back(dl, rho, -1.0 - u(rng));  // W
+  for (int j = 0; j < d; ++j) {
+    if (j % 3 == 0) e.emplace_back(j, dl, -0.3 * u(rng));  // U1: the load column
+    e.emplace_back(rho, j, 0.01 * (u(rng) - 0.5));         // arc-length row: V
+  }
+  e.emplace_back(rho, dl, 0.5);
+  SpMat a(n, n);
+  a.setFromTriplets(e.begin(), e.end());
+  a.makeCompressed();
+  return a;
+}
+
+void ExpectCondensedMatchesLu(int d, int nc, int spread, bool contact_block) {
+  const double coupling = 0.3;
+  const JacobianStructure structure{d, nc, coupling};
+  auto cholmod = MakeLinearSolver("cholmod");
+  auto lu = MakeLinearSolver("klu");
+  cholmod->SetStructure(&structure);
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    SpMat a = StructuredJacobian(d, nc, spread, coupling, seed);
+    if (seed > 1) {
+      // Same stiffness as the first matrix (so the contact-block factor is reused), new pairs.
+      const SpMat first = StructuredJacobian(d, nc, spread, coupling, 1);
+      for (int j = 0; j < d; ++j) {
+        for (int k = a.outerIndexPtr()[j]; k < a.outerIndexPtr()[j + 1]; ++k) {
+          if (a.innerIndexPtr()[k] < d) a.valuePtr()[k] = first.valuePtr()[k];
+        }
+      }
+    }
+    const Vec b = Vec::LinSpaced(a.rows(), -1.0, 2.0);
+    Vec x, x_lu;
+    ASSERT_TRUE(lu->Factorize(a)) << "seed " << seed << ": " << lu->message();
+    ASSERT_TRUE(lu->Solve(b, &x_lu));
+    ASSERT_TRUE(cholmod->Factorize(a)) << cholmod->message();
+    ASSERT_TRUE(cholmod->Solve(b, &x)) << cholmod->message();
+    EXPECT_LE((x - x_lu).norm() / x_lu.norm(), 1e-11) << "seed " << seed;
+    EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12) << "seed " << seed;
+  }
+  const CondensedSolverStats* stats = CondensedStats(*cholmod);
+  ASSERT_NE(stats, nullptr);
+  EXPECT_EQ(stats->condensed_factorizations, 3);
+  EXPECT_EQ(stats->contact_block_factorizations, contact_block ? 3 : 0);
+  EXPECT_EQ(stats->fallback_factorizations, 0);
+  EXPECT_EQ(stats->fallback_solves, 0);
+  EXPECT_GT(stats->capped_pairs, 0);  // the closed pairs (Db = 0)
+  EXPECT_GT(stats->refinement_sweeps, 0);
+}
+
+TEST(CondensedCholeskyTest, SmallSystemMatchesTheFullLu) {
+  ExpectCondensedMatchesLu(300, 40, 7, false);
+}
+
+TEST(CondensedCholeskyTest, ContactBlockPathMatchesTheFullLu) {
+  // d >= 1000 with few contact dofs: only the dense contact block is refactorised.
+  ExpectCondensedMatchesLu(1500, 60, 11, true);
+}
+
+TEST(CondensedCholeskyTest, FallsBackWhereTheStructureDoesNotHold) {
+  const int d = 300, nc = 40;
+  const JacobianStructure structure{d, nc, 0.3};
+  auto cholmod = MakeLinearSolver("cholmod");
+  cholmod->SetStructure(&structure);
+  // H is not -coupling G^T here (the structure claims 0.3, the matrix has 0.7).
+  const SpMat a = StructuredJacobian(d, nc, 7, 0.7, 5);
+  const Vec b = Vec::LinSpaced(a.rows(), -1.0, 2.0);
+  Vec x;
+  ASSERT_TRUE(cholmod->Factorize(a)) << cholmod->message();
+  ASSERT_TRUE(cholmod->Solve(b, &x)) << cholmod->message();
+  EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(CondensedStats(*cholmod)->fallback_factorizations, 1);
+  // Without a structure: the fallback, with the same answer.
+  cholmod->SetStructure(nullptr);
+  ASSERT_TRUE(cholmod->Factorize(a)) << cholmod->message();
+  ASSERT_TRUE(cholmod->Solve(b, &x)) << cholmod->message();
+  EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(CondensedStats(*cholmod)->fallback_factorizations, 2);
+}
+
+TEST(CondensedCholeskyTest, IndefiniteStiffnessIsStillSolvedExactly) {
+  // An indefinite Kc: CHOLMOD's simplicial LDL^T (chosen for small matrices) may factorise it
+  // without pivoting, a supernodal LL^T refuses it and the LU takes over; either way the
+  // refinement on the full system keeps the answer exact.
+  for (int d : {300, 1500}) {
+    const int nc = 40;
+    const JacobianStructure structure{d, nc, 0.3};
+    auto cholmod = MakeLinearSolver("cholmod");
+    cholmod->SetStructure(&structure);
+    SpMat a = StructuredJacobian(d, nc, 7, 0.3, 6);
+    a.coeffRef(d / 2, d / 2) = -10.0;
+    const Vec b = Vec::LinSpaced(a.rows(), -1.0, 2.0);
+    Vec x;
+    ASSERT_TRUE(cholmod->Factorize(a)) << cholmod->message();
+    ASSERT_TRUE(cholmod->Solve(b, &x)) << cholmod->message();
+    EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12) << "d = " << d;
+  }
+}
+#endif
+
 TEST(LinearSolverFactoryTest, DefaultComesFirstAndUnknownNameListsValidOnes) {
   ASSERT_FALSE(LinearSolverNames().empty());
   EXPECT_EQ(LinearSolverNames().front(), DefaultLinearSolverName());
   EXPECT_EQ(SolverOptions().linear_solver, DefaultLinearSolverName());
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
-  EXPECT_EQ(LinearSolverNames().size(), 3u);
-  EXPECT_EQ(DefaultLinearSolverName(), "klu");
+  EXPECT_EQ(LinearSolverNames().size(), 4u);
+  EXPECT_EQ(DefaultLinearSolverName(), "cholmod");
 #else
   EXPECT_EQ(DefaultLinearSolverName(), "sparse-lu");
 #endif

@@ -100,7 +100,9 @@ StepEquationSystem::StepEquationSystem(const StepProblem& step, bool has_rho,
                                        std::shared_ptr<PatternCache> cache)
     : step_(step),
       layout_{step.num_dofs(), step.num_pairs(), has_rho},
-      cache_(cache ? std::move(cache) : std::make_shared<PatternCache>()) {}
+      cache_(cache ? std::move(cache) : std::make_shared<PatternCache>()),
+      structure_{step.num_dofs(), step.num_pairs(), step.scales.length},
+      has_structure_(step.model->has_energy()) {}
 
 StepEquationSystem::~StepEquationSystem() = default;
 

@@ -81,6 +81,12 @@ class StepEquationSystem : public EquationSystem {
   int size() const override { return layout_.size(); }
   bool Residual(const Vec& x, Vec* residual) final;
   void Jacobian(const Vec& x, SpMat* jacobian) final;
+  // The block structure of JacobianStructure with v = du, coupling = L (dF1/dr^ = -grad phi^T,
+  // dF2/ddu = grad phi / L), y = (dlambda[, rho]); offered when the model has an energy (so
+  // dF1/ddu is symmetric).
+  const JacobianStructure* structure() const final {
+    return has_structure_ ? &structure_ : nullptr;
+  }
   const StepEquationLayout& step_layout() const { return layout_; }
   const StepProblem& step() const { return step_; }
 
@@ -110,6 +116,8 @@ class StepEquationSystem : public EquationSystem {
   const StepProblem& step_;
   StepEquationLayout layout_;
   std::shared_ptr<PatternCache> cache_;
+  JacobianStructure structure_;
+  bool has_structure_ = false;
   // Work storage reused across evaluations.
   Vec u_, internal_, phi_, reaction_;
   SpMat curvature_, gap_jacobian_;

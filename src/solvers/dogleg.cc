@@ -17,6 +17,7 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
   using internal::Finish;
   using internal::InfNorm;
   internal::CheckInitialPoint(system, x, name());
+  linear_solver_->SetStructure(system.structure());
   const int n = system.size();
   f_.resize(n);
   f_trial_.resize(n);

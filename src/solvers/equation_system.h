@@ -6,6 +6,24 @@
 
 namespace cb {
 
+// The block structure of a Jacobian, for linear solvers that exploit it (the condensed
+// "cholmod" solver, linear_solver.h). Unknowns and rows are ordered
+//   x = (v [d], g [nc], r [nc], y [m]),   rows (R1 [d], R2 [nc], R3 [nc], R4 [m]),
+// m = size - d - 2 nc, and the Jacobian has the form
+//   R1: [ A   0    H    U1 ]     A symmetric, H = -coupling * G^T
+//   R2: [ G   E    0    0  ]     E diagonal (non-zero)
+//   R3: [ 0   Da   Db   U3 ]     Da, Db diagonal
+//   R4: [ V   Vg   Vr   W  ]     a few border rows (dense or sparse)
+// (the step equations: v = du, (g, r) per contact pair, y = (dlambda[, rho]); R2 = (30),
+// R3 = the complementarity rows, R4 = the extra row and the step constraint). A solver must
+// not rely on it beyond what it verifies: the condensed solver checks the block pattern and
+// judges its answer by the residual of the full system.
+struct JacobianStructure {
+  int d = 0;
+  int nc = 0;
+  double coupling = 1.0;
+};
+
 class EquationSystem {
  public:
   virtual ~EquationSystem() = default;
@@ -15,6 +33,8 @@ class EquationSystem {
   virtual bool Residual(const Vec& x, Vec* residual) = 0;
   // J(x) = dF/dx. The sparsity pattern is the same on every call.
   virtual void Jacobian(const Vec& x, SpMat* jacobian) = 0;
+  // The block structure of J (see JacobianStructure), or nullptr when it has none to offer.
+  virtual const JacobianStructure* structure() const { return nullptr; }
 };
 
 }  // namespace cb

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "solvers/equation_system.h"
 
 namespace cb {
 
@@ -16,6 +17,9 @@ class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
   virtual std::string name() const = 0;
+  // The block structure of the matrices that follow (nullptr: none). A hint that only
+  // structure-exploiting solvers ("cholmod") use; the others ignore it.
+  virtual void SetStructure(const JacobianStructure* /*structure*/) {}
   // Numerical factorisation of A (square). Returns false when A is singular to working
   // precision (or the factorisation otherwise fails); message() says why.
   virtual bool Factorize(const SpMat& a) = 0;
@@ -33,7 +37,8 @@ class LinearSolver {
 
 // Names accepted by MakeLinearSolver, the default first.
 std::vector<std::string> LinearSolverNames();
-// The default: "klu" when SuiteSparse was built, else "sparse-lu".
+// The default: "cholmod" (condensed Cholesky, falling back to "klu") when SuiteSparse was
+// built, else "sparse-lu".
 std::string DefaultLinearSolverName();
 // Throws std::invalid_argument listing the valid names for an unknown one.
 std::unique_ptr<LinearSolver> MakeLinearSolver(const std::string& name);

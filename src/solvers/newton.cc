@@ -17,6 +17,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
                                   const IterationCallback& callback) {
   using internal::Finish;
   internal::CheckInitialPoint(system, x, name());
+  linear_solver_->SetStructure(system.structure());
   const int n = system.size();
   f_.resize(n);
   dx_.resize(n);

@@ -25,6 +25,7 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
                                        const IterationCallback& callback) {
   using internal::Finish;
   internal::CheckInitialPoint(system, x, name());
+  linear_solver_->SetStructure(system.structure());
   const int n = system.size();
   f_.resize(n);
   f_trial_.resize(n);
