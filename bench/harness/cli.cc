@@ -419,7 +419,8 @@ int Compare(const std::vector<std::string>& args) {
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
   CsvWriter runs(a.out + "/runs.csv", {"problem", "formulation", "solver", "start", "mode",
-                                       "settings", "status", "attempts", "accepted", "message"});
+                                       "settings", "status", "attempts", "accepted", "message",
+                                       "time_limit_s", "tolerance"});
 
   // The reference path: the work every formulation is given in replay mode (warm start,
   // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
@@ -458,7 +459,7 @@ int Compare(const std::vector<std::string>& args) {
         const std::string why = formulation->name() + " cannot express the step constraint '" +
                                 std::string(ToString(kind)) + "'";
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
-        row << "skipped" << 0 << 0 << why;
+        row << "skipped" << 0 << 0 << why << a.time_limit << a.tolerance;
         runs.Write(row);
         continue;
       }
@@ -469,11 +470,23 @@ int Compare(const std::vector<std::string>& args) {
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
-      const PathSummary s =
-          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
-                                          path, *formulation, run_options, &recorder)
-                             : Trace(problem, *formulation, run_options, &recorder);
-      row << ToString(s.status) << recorder.attempts() << recorder.accepted() << s.message;
+      PathSummary s;
+      try {
+        s = a.mode == "replay" ? ReplayPath(*problem.model, problem.scales,
+                                            ZeroState(*problem.model), path, *formulation,
+                                            run_options, &recorder)
+                               : Trace(problem, *formulation, run_options, &recorder);
+      } catch (const std::invalid_argument& e) {
+        // A formulation refusing the problem (dense SLSQP above its size limit) is recorded as
+        // skipped with its reason; the other formulations still run.
+        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), e.what());
+        row << "skipped" << recorder.attempts() << recorder.accepted() << e.what() << a.time_limit
+            << a.tolerance;
+        runs.Write(row);
+        continue;
+      }
+      row << ToString(s.status) << recorder.attempts() << recorder.accepted() << s.message
+          << a.time_limit << a.tolerance;
       runs.Write(row);
       if (s.status == Status::kStoppedByCaller) return kExitInterrupted;
     }

@@ -1,0 +1,83 @@
+// Helpers shared by the formulation benchmarks (formulation_step_benchmark.cc,
+// scaling_benchmark.cc): the machine description for the JSON context, the verdict as a
+// message, and the resident-memory probes of /proc/self.
+#pragma once
+
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "step/formulation.h"
+#include "verdict/verdict.h"
+
+namespace cb::bench {
+
+// The CPU model from /proc/cpuinfo: Google Benchmark's own context has the number of CPUs and
+// their clock, not the model, which the comparison report states.
+inline std::string CpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
+}
+
+inline void AddMachineContext() {
+  benchmark::AddCustomContext("cpu_model", CpuModel());
+  benchmark::AddCustomContext("hardware_threads",
+                              std::to_string(std::thread::hardware_concurrency()));
+}
+
+// Why an answer is not accepted, for SkipWithError.
+inline std::string VerdictMessage(const Verdict& v, const StepResult& r, bool reversed) {
+  char text[256];
+  std::snprintf(text, sizeof(text), "%s: eq %.2g comp %.2g feas %.2g step %.2g (%s, %d iterations)",
+                reversed ? "turned back on the reference path" : "not verified", v.eq_res,
+                v.comp_res, v.feas_res, v.step_res, r.message.c_str(), r.counts.iterations);
+  return text;
+}
+
+// A field of /proc/self/status in kB ("VmRSS", "VmHWM"); -1 if unreadable.
+inline double StatusKb(const std::string& field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1));
+  }
+  return -1.0;
+}
+
+// Peak resident memory of one solve: free heap is returned to the system (malloc_trim) and the
+// high-water mark VmHWM reset to the current RSS (writing 5 to /proc/self/clear_refs, Linux >=
+// 4.0), so that VmHWM after the solve is the peak during it and VmHWM - RSS before is what the
+// solve added. Without clear_refs (another kernel, a sandbox) `reset` is false and the peak is
+// the process's since its start.
+class PeakMemory {
+ public:
+  void Start() {
+    malloc_trim(0);
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+    clear.flush();
+    reset_ = static_cast<bool>(clear);
+    rss_before_kb_ = StatusKb("VmRSS");
+  }
+  // Peak RSS since Start [MB] and its increase over the RSS at Start [MB].
+  double PeakMb() const { return StatusKb("VmHWM") / 1024.0; }
+  double IncreaseMb() const { return (StatusKb("VmHWM") - rss_before_kb_) / 1024.0; }
+  bool reset() const { return reset_; }
+
+ private:
+  double rss_before_kb_ = 0.0;
+  bool reset_ = false;
+};
+
+}  // namespace cb::bench

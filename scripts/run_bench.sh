@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The standard benchmark set: builds (scripts/setup.sh, Release) and runs the Google Benchmark
+# binaries, writing Google Benchmark's own JSON to RESULTS_DIR/bench/<binary>.json (default
+# results/bench/), and the console tables to <binary>.txt beside it.
+#
+#   implicit_fb_benchmark        the implicit smoothed-FB timings (P1 per linear solver, P3 step,
+#                                whole paths, Newton iteration / factorisation)
+#   formulation_step_benchmark   one replayed P2 / P3 step per formulation x start x step
+#   scaling_benchmark            P1 cold solve, n = 25 ... 400, every fixed-load formulation
+#
+# Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
+# its own (solves of seconds are measured once; see each binary's header comment).
+# Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
+# Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), REPETITIONS (3),
+# SKIP_SETUP=1 to use an existing build without running setup.sh.
+set -uo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$here/build}"
+out="${RESULTS_DIR:-$here/results}/bench"
+repetitions="${REPETITIONS:-3}"
+if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit 1; fi
+mkdir -p "$out"
+
+status=0
+for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark; do
+  exe="$build/bin/$binary"
+  if [[ ! -x "$exe" ]]; then
+    echo "run_bench: $exe not built (BUILD_BENCHMARKS=OFF?)" >&2; status=1; continue
+  fi
+  echo "== $binary -> $out/$binary.json" >&2
+  start=$SECONDS
+  "$exe" --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
+      --benchmark_out="$out/$binary.json" --benchmark_out_format=json "$@" \
+      > "$out/$binary.txt" || { echo "   ($binary failed)" >&2; status=1; }
+  echo "   $((SECONDS - start)) s" >&2
+done
+exit $status

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The comparison runs of COMPARISON.md (`contactbench compare`, replay mode) behind
+# results/COMPARISON.md. Records go to RESULTS_DIR/compare/<set>/ (default results/compare/):
+#
+#   arch-flat, arch-curved   P2 and P3, the FULL default path of each problem (its `steps`
+#                            parameter: 600 and 1604 steps unless the problem's defaults change),
+#                            every available formulation except nlopt-mpcc, warm and cold;
+#                            those that cannot express an arc-length step are listed as skipped.
+#   arch-flat-prefix, arch-curved-prefix
+#                            the first PREFIX_STEPS (default 50) steps of the same paths with
+#                            every formulation INCLUDING nlopt-mpcc (dense SLSQP: 1-5 s per P3
+#                            step against 0.1 ms for implicit-fb, so the full P3 path, warm and
+#                            cold, would take about 4 hours). With the default reconstruction the
+#                            prefix is the linear part of the path before any contact.
+#   block                    P1 (n = 50, the report's mesh), the single fixed-load solve from the
+#                            cold start, every available formulation (nlopt-mpcc refuses it:
+#                            dense above 2000 unknowns, recorded as skipped). Cold only: a
+#                            "warm" start of the one solve from the unloaded state would be
+#                            u = 0, r = 0, which is no previous answer.
+#
+# Every solve has a time limit of TIME_LIMIT seconds (default 5, as the main job's comparison);
+# runs.csv records it (column time_limit_s), and the report charges failures at it.
+# Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
+# depends on the reconstruction choices.
+#
+# Run time on the 2-core machine of the README: about 25 minutes (P3 full path: ipopt-mpcc
+# ~6 min, the rest ~2 min; the two prefixes with nlopt-mpcc: ~12 min; P2 and P1 ~2 min).
+# Usage: scripts/run_compare.sh [SET ...]   (default: all five sets, in the order above)
+# Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
+# PREFIX_STEPS (50), SKIP_SETUP=1 to use an existing build without running setup.sh.
+set -uo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$here/build}"
+out="${RESULTS_DIR:-$here/results}/compare"
+time_limit="${TIME_LIMIT:-5}"
+prefix_steps="${PREFIX_STEPS:-50}"
+if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit 1; fi
+cb="$build/bin/contactbench"
+
+# The formulations this build has (`contactbench list` marks the others "(not built)").
+mapfile -t available < <("$cb" list | awk '/^formulations:/ {f = 1; next} /^[a-z]/ {f = 0}
+  f && NF && $0 !~ /\(not built\)/ {print $1}')
+join() { local IFS=,; echo "$*"; }
+all="$(join "${available[@]}")"
+without_slsqp="$(join $(printf '%s\n' "${available[@]}" | grep -vx nlopt-mpcc))"
+
+status=0
+compare() {  # compare SET ARGS...
+  local dir="$out/$1"; shift
+  rm -rf "$dir"  # one comparison per directory: the CSVs are appended to, never mixed
+  echo "== contactbench compare $* --out $dir" >&2
+  local start=$SECONDS
+  "$cb" compare "$@" --time-limit "$time_limit" --out "$dir"
+  local rc=$?
+  echo "   $((SECONDS - start)) s (exit status $rc)" >&2
+  ((rc == 0)) || status=3
+}
+
+sets=("$@")
+((${#sets[@]})) || sets=(arch-flat arch-curved arch-flat-prefix arch-curved-prefix block)
+for set in "${sets[@]}"; do
+  case "$set" in
+    arch-flat|arch-curved)
+      compare "$set" --problem "$set" --formulations "$without_slsqp" --starts warm,cold ;;
+    arch-flat-prefix|arch-curved-prefix)
+      compare "$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \
+          --steps "$prefix_steps" ;;
+    block)
+      compare block --problem block --formulations "$all" --starts cold ;;
+    *) echo "run_compare: unknown set '$set'" >&2; exit 2 ;;
+  esac
+done
+exit $status
