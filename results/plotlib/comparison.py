@@ -1,0 +1,617 @@
+"""The comparison report: RESULTS_DIR/COMPARISON.md and its figures, from the CSVs alone.
+
+`write(results_dir)` reads only
+  results_dir/compare/<set>/runs.csv, steps.csv   (`contactbench compare`, scripts/run_compare.sh)
+  results_dir/bench/*.json                        (Google Benchmark JSON, scripts/run_bench.sh)
+and writes results_dir/COMPARISON.md and PNG figures into results_dir/figures/comparison/.
+
+Aggregation (../shared/spec/COMPARISON.md "Aggregation"), per comparison set (one directory
+of `compare`: one problem, the same replayed steps for every formulation x start):
+  - success rate: accepted steps (verified by the verdict and not turned back) / steps;
+  - shifted geometric means (shift 10) of time and iterations per step, a failed step charged
+    at the run's time limit (runs.csv time_limit_s; without one, the largest time of the set)
+    and at the largest iteration count of the set, normalised so that the best is 1.0;
+  - Dolan-More performance profiles of time and iterations (a failed step has ratio infinity);
+  - warm-start gain = cold / warm, of the shifted geometric means (failures charged) and of the
+    medians over accepted steps;
+  - iteration histograms of the accepted steps (the form of the report's Tables 1 and 2).
+The scaling of the P1 cold solve (scaling_benchmark.json): time, iterations and memory against
+d, and the growth exponent: the least-squares slope of log time against log d.
+"""
+import glob
+import json
+import math
+import os
+import platform
+
+import numpy as np
+import pandas as pd
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+
+SHIFT = 10.0
+# Times enter the shifted means in milliseconds, so the shift is 10 ms. The shifted mean lies
+# between the geometric mean (values far above the shift) and the arithmetic mean (values far
+# below it): with 10 s, the convention for solves of seconds to hours, every per-step mean here
+# (0.05 ms ... 5 s) would be nearly arithmetic and dominated by the failures charged at the
+# time limit. The unshifted geometric-mean ratio is reported beside it.
+TIME_UNIT_MS = 1e3
+PROBLEM_LABEL = {"block": "P1 block", "arch-flat": "P2 arch-flat", "arch-curved": "P3 arch-curved"}
+# The reference report's Table 2 (P3, BFGS quasi-Newton csolve, 1604 steps): steps per count.
+REPORT_TABLE_2 = {3: 1081, 4: 379, 5: 100, 6: 6, 7: 7, 8: 10, 9: 9, 10: 10, 12: 2}
+HISTOGRAM_MAX = 12  # histogram columns 1..12, then "> 12"
+
+
+# --- the aggregation maths (unit-tested in tests/python/test_comparison.py) -----------------
+
+def shifted_geometric_mean(values, shift=SHIFT):
+    """exp(mean(log(x + shift))) - shift, over finite non-negative values."""
+    x = np.asarray(values, dtype=float)
+    if x.size == 0:
+        return float("nan")
+    if np.any(x < 0) or not np.all(np.isfinite(x)):
+        raise ValueError("shifted geometric mean needs finite non-negative values")
+    return float(np.exp(np.mean(np.log(x + shift))) - shift)
+
+
+def charged(values, solved, charge):
+    """The values with every unsolved entry replaced by `charge` (failures at the limit)."""
+    v = np.asarray(values, dtype=float).copy()
+    v[~np.asarray(solved, dtype=bool)] = charge
+    return v
+
+
+def performance_ratios(table):
+    """Dolan-More ratios: `table` is a DataFrame problems x solvers with the measure of each
+    solved pair and NaN (or inf) for a failure. r[p, s] = t[p, s] / min_s t[p, s]; inf where s
+    failed or no solver solved p."""
+    t = table.astype(float).replace([np.inf], np.nan)
+    best = t.min(axis=1, skipna=True)
+    ratios = t.div(best, axis=0)
+    return ratios.fillna(np.inf)
+
+
+def profile(ratios, taus):
+    """rho_s(tau) = fraction of problems with r[p, s] <= tau, for each solver (column)."""
+    r = np.asarray(ratios, dtype=float)
+    taus = np.asarray(taus, dtype=float)
+    return {col: np.array([(r[:, j] <= tau).mean() for tau in taus])
+            for j, col in enumerate(ratios.columns)}
+
+
+def growth_exponent(d, t):
+    """Least-squares slope of log t against log d (t ~ d^slope); NaN with fewer than 2 points."""
+    d = np.asarray(d, dtype=float)
+    t = np.asarray(t, dtype=float)
+    ok = np.isfinite(d) & np.isfinite(t) & (d > 0) & (t > 0)
+    if ok.sum() < 2:
+        return float("nan")
+    slope, _ = np.polyfit(np.log(d[ok]), np.log(t[ok]), 1)
+    return float(slope)
+
+
+# --- reading ------------------------------------------------------------------------------
+
+def comparison_sets(results_dir):
+    """(name, runs, steps) per `compare` output directory under results_dir/compare."""
+    root = os.path.join(results_dir, "compare")
+    for runs_csv in sorted(glob.glob(os.path.join(root, "**", "runs.csv"), recursive=True)):
+        d = os.path.dirname(runs_csv)
+        steps_csv = os.path.join(d, "steps.csv")
+        if not os.path.exists(steps_csv):
+            continue
+        runs = pd.read_csv(runs_csv)
+        steps = pd.read_csv(steps_csv)
+        steps = steps[steps["mode"] != "reference"]
+        yield os.path.relpath(d, root), runs, steps
+
+
+def read_benchmarks(path):
+    """Google Benchmark JSON -> (context dict, DataFrame with one row per benchmark: the median
+    aggregate where repetitions were aggregated, else the single run; errors kept)."""
+    with open(path) as f:
+        data = json.load(f)
+    rows = []
+    for b in data.get("benchmarks", []):
+        rows.append(b)
+    df = pd.DataFrame(rows)
+    if df.empty:
+        return data.get("context", {}), df
+    if "run_name" not in df:
+        df["run_name"] = df["name"]
+    for col in ("aggregate_name", "error_occurred", "error_message"):
+        if col not in df:
+            df[col] = np.nan
+    df["error_occurred"] = df["error_occurred"].fillna(False).astype(bool)
+    picked = []
+    for run_name, g in df.groupby("run_name", sort=False):
+        errors = g[g["error_occurred"]]
+        if len(errors):
+            picked.append(errors.iloc[0])
+            continue
+        median = g[g["aggregate_name"] == "median"]
+        picked.append(median.iloc[0] if len(median) else g.iloc[0])
+    out = pd.DataFrame(picked).reset_index(drop=True)
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    out["seconds"] = [rt * scale.get(u, 1.0) if isinstance(u, str) else np.nan
+                      for rt, u in zip(out.get("real_time", np.nan), out.get("time_unit", ""))]
+    return data.get("context", {}), out
+
+
+def machine_lines(results_dir):
+    """The machine, from the benchmark JSON context (where the timings were taken), else from
+    this machine at generation time (said so)."""
+    for path in sorted(glob.glob(os.path.join(results_dir, "bench", "*.json"))):
+        try:
+            ctx, _ = read_benchmarks(path)
+        except (ValueError, OSError):
+            continue
+        if ctx:
+            mhz = ctx.get("mhz_per_cpu")
+            return [f"Machine (from the context of `bench/{os.path.basename(path)}`): "
+                    f"{ctx.get('cpu_model', 'CPU model not recorded')}, "
+                    f"{ctx.get('num_cpus', '?')} CPUs"
+                    + (f" at {mhz} MHz" if mhz else "")
+                    + f", host `{ctx.get('host_name', '?')}`, benchmarks run {ctx.get('date', '?')}"
+                    + f", library build type {ctx.get('library_build_type', '?')}."]
+    model = "unknown"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return [f"Machine (no benchmark JSON: read at report generation): {model}, "
+            f"{os.cpu_count()} CPUs, {platform.system()} {platform.release()}."]
+
+
+# --- aggregation of one comparison set ----------------------------------------------------
+
+def solver_label(formulation, start):
+    return f"{formulation} ({start})"
+
+
+def set_title(name, runs, steps):
+    problem = runs["problem"].iloc[0] if len(runs) else name
+    n = steps["step"].nunique() if len(steps) else 0
+    label = PROBLEM_LABEL.get(problem, problem)
+    what = "1 fixed-load solve" if n == 1 else f"{n} replayed steps"
+    return f"{label}, set `{name}` ({what})"
+
+
+def aggregate(runs, steps):
+    """Per formulation x start that ran: counts, success rate, shifted geometric means with
+    failures charged, medians over accepted steps. Returns (table, skipped runs)."""
+    skipped = runs[runs["status"] == "skipped"]
+    ran = runs[runs["status"] != "skipped"]
+    limit = float(runs["time_limit_s"].max()) if "time_limit_s" in runs else 0.0
+    replay = steps[steps["mode"] == "replay"] if "mode" in steps else steps
+    time_charge = limit if limit > 0 else float(replay["time_s"].max())
+    iter_charge = float(replay["iterations"].max()) if len(replay) else 0.0
+    rows = []
+    for _, run in ran.iterrows():
+        g = replay[(replay["formulation"] == run["formulation"]) & (replay["start"] == run["start"])]
+        ok = g["accepted"].astype(bool).to_numpy()
+        t_ms = charged(g["time_s"].to_numpy(), ok, time_charge) * TIME_UNIT_MS
+        its = charged(g["iterations"].to_numpy(), ok, iter_charge)
+        acc = g[ok]
+        rows.append(dict(
+            formulation=run["formulation"], start=run["start"], steps=len(g), solved=int(ok.sum()),
+            success=ok.mean() if len(g) else float("nan"),
+            sgm_time_ms=shifted_geometric_mean(t_ms) if len(g) else float("nan"),
+            gm_time_ms=shifted_geometric_mean(t_ms, 0.0) if len(g) else float("nan"),
+            sgm_iterations=shifted_geometric_mean(its) if len(g) else float("nan"),
+            median_time_ms=acc["time_s"].median() * TIME_UNIT_MS if len(acc) else float("nan"),
+            median_iterations=acc["iterations"].median() if len(acc) else float("nan"),
+            total_time_s=g["time_s"].sum()))
+    table = pd.DataFrame(rows)
+    if len(table):
+        for col in ("sgm_time_ms", "gm_time_ms", "sgm_iterations"):
+            table[col + "_ratio"] = table[col] / table[col].min()
+    return table, skipped, time_charge, iter_charge
+
+
+def warm_gain(table):
+    """cold / warm per formulation with both starts."""
+    rows = []
+    for f, g in table.groupby("formulation", sort=False):
+        w = g[g["start"] == "warm"]
+        c = g[g["start"] == "cold"]
+        if not len(w) or not len(c):
+            continue
+        w, c = w.iloc[0], c.iloc[0]
+        div = lambda a, b: a / b if b and b == b and a == a else float("nan")  # noqa: E731
+        rows.append(dict(formulation=f,
+                         sgm_time=div(c["sgm_time_ms"], w["sgm_time_ms"]),
+                         sgm_iterations=div(c["sgm_iterations"], w["sgm_iterations"]),
+                         median_time=div(c["median_time_ms"], w["median_time_ms"]),
+                         median_iterations=div(c["median_iterations"], w["median_iterations"])))
+    return pd.DataFrame(rows)
+
+
+def measure_table(steps, runs, column):
+    """Steps x solvers: the measure where the step was accepted, NaN where it failed."""
+    ran = runs[runs["status"] != "skipped"]
+    replay = steps[steps["mode"] == "replay"] if "mode" in steps else steps
+    cols = {}
+    for _, run in ran.iterrows():
+        g = replay[(replay["formulation"] == run["formulation"]) & (replay["start"] == run["start"])]
+        v = g.set_index("step")[column].astype(float).where(g.set_index("step")["accepted"].astype(bool))
+        if column == "iterations":
+            v = v.clip(lower=1)  # a step solved at its start counts as one iteration
+        cols[solver_label(run["formulation"], run["start"])] = v
+    return pd.DataFrame(cols)
+
+
+def histogram(steps, formulation, start):
+    g = steps[(steps["formulation"] == formulation) & (steps["start"] == start)]
+    acc = g[g["accepted"].astype(bool)]["iterations"].astype(int)
+    counts = {k: int((acc == k).sum()) for k in range(0, HISTOGRAM_MAX + 1)}
+    counts["more"] = int((acc > HISTOGRAM_MAX).sum())
+    counts["failed"] = int(len(g) - len(acc))
+    return counts
+
+
+# --- figures ------------------------------------------------------------------------------
+
+STYLE = {"warm": "-", "cold": "--"}
+
+
+def _colours(formulations):
+    cmap = plt.get_cmap("tab10")
+    return {f: cmap(i % 10) for i, f in enumerate(formulations)}
+
+
+def plot_profiles(name, title, runs, steps, path):
+    """Time and iteration profiles side by side; False when nothing was solved."""
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    formulations = list(dict.fromkeys(runs[runs["status"] != "skipped"]["formulation"]))
+    colours = _colours(formulations)
+    any_line = False
+    for ax, column, what in ((axes[0], "time_s", "time per step"),
+                             (axes[1], "iterations", "iterations per step")):
+        table = measure_table(steps, runs, column)
+        if table.empty:
+            continue
+        ratios = performance_ratios(table)
+        finite = ratios.replace(np.inf, np.nan).max().max()
+        top = max(2.0, float(finite) * 1.5) if finite == finite else 2.0
+        taus = np.logspace(0, math.log10(top), 400)
+        curves = profile(ratios, taus)
+        for col, rho in curves.items():
+            f, start = col.rsplit(" (", 1)
+            start = start.rstrip(")")
+            ax.step(taus, rho, where="post", color=colours[f], linestyle=STYLE.get(start, ":"),
+                    label=col, linewidth=1.8)
+            any_line = any_line or rho.max() > 0
+        ax.set_xscale("log", base=2)
+        ax.set_ylim(-0.02, 1.02)
+        ax.set_xlabel(f"tau: {what} within a factor tau of the best formulation (log2 scale)")
+        ax.set_ylabel("fraction of steps solved (verified)")
+        ax.set_title(f"Performance profile of {what}")
+        ax.grid(True, which="both", alpha=0.3)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="center right", fontsize=9, title="formulation (start)")
+    fig.suptitle(f"Dolan-More performance profiles: {title}")
+    fig.tight_layout(rect=(0, 0, 0.8, 0.95))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return any_line
+
+
+def plot_histograms(title, runs, steps, path, iteration_word):
+    ran = runs[runs["status"] != "skipped"]
+    formulations = list(dict.fromkeys(ran["formulation"]))
+    if not formulations:
+        return False
+    cols = min(3, len(formulations))
+    rows = math.ceil(len(formulations) / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 3.6 * rows), squeeze=False)
+    for ax, f in zip(axes.flat, formulations):
+        starts = list(ran[ran["formulation"] == f]["start"])
+        data = {}
+        for s in starts:
+            g = steps[(steps["formulation"] == f) & (steps["start"] == s)]
+            data[s] = g[g["accepted"].astype(bool)]["iterations"].astype(int).to_numpy()
+        hi = max([int(v.max()) for v in data.values() if len(v)] + [1])
+        edges = np.arange(0.5, hi + 1.5) if hi <= 60 else np.linspace(0.5, hi + 0.5, 40)
+        width_ok = False
+        for s in starts:
+            if len(data[s]):
+                ax.hist(data[s], bins=edges, alpha=0.6, label=f"{s} ({len(data[s])} accepted)",
+                        color="tab:blue" if s == "warm" else "tab:orange")
+                width_ok = True
+            else:
+                ax.plot([], [], " ", label=f"{s}: no accepted step")
+        word = iteration_word(f)
+        ax.set_xlabel(f"{word} per step")
+        ax.set_ylabel("accepted steps")
+        ax.set_title(f)
+        ax.legend(fontsize=8)
+        if width_ok and hi <= 60:
+            ax.set_xticks(range(1, hi + 1, max(1, hi // 10)))
+    for ax in list(axes.flat)[len(formulations):]:
+        ax.axis("off")
+    fig.suptitle(f"Iterations per accepted step: {title}")
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return True
+
+
+def plot_scaling(scaling, path):
+    ok = scaling[~scaling["error_occurred"]]
+    if ok.empty:
+        return False
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    formulations = list(dict.fromkeys(scaling["formulation"]))
+    colours = _colours(formulations)
+    for f in formulations:
+        g = ok[ok["formulation"] == f].sort_values("d")
+        if g.empty:
+            continue
+        k = growth_exponent(g["d"], g["seconds"])
+        lab = f"{f} (slope {k:.2f})" if k == k else f
+        axes[0].loglog(g["d"], g["seconds"], "o-", color=colours[f], label=lab)
+        if "peak_rss_mb" in g:
+            axes[1].loglog(g["d"], g["peak_rss_mb"], "o-", color=colours[f], label=f)
+    axes[0].set_xlabel("d, degrees of freedom (P1 with n x n elements, d = 2 (n + 1)^2)")
+    axes[0].set_ylabel("wall time of the cold solve [s]")
+    axes[0].set_title("Time of one P1 cold solve (slope: fitted exponent of d)")
+    axes[1].set_xlabel("d, degrees of freedom")
+    axes[1].set_ylabel("peak resident memory during the solve [MB]")
+    axes[1].set_title("Peak memory of one P1 cold solve")
+    for ax in axes:
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=9)
+    fig.suptitle("Scaling of the P1 block cold solve by formulation (scaling_benchmark)")
+    fig.tight_layout(rect=(0, 0, 1, 0.94))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return True
+
+
+# --- Markdown -----------------------------------------------------------------------------
+
+def fmt(v, spec=".3g"):
+    if v is None or (isinstance(v, float) and (math.isnan(v) or math.isinf(v))):
+        return "-"
+    return format(v, spec)
+
+
+def iteration_word_for(runs):
+    evaluations = set(runs[runs["settings"].astype(str).str.contains("iterations=evaluations")]
+                      ["formulation"])
+    return lambda f: "objective evaluations" if f in evaluations else "iterations"
+
+
+def set_section(name, runs, steps, figures_dir, results_dir):
+    title = set_title(name, runs, steps)
+    table, skipped, time_charge, iter_charge = aggregate(runs, steps)
+    out = [f"## {title}", ""]
+    if table.empty:
+        return out + ["No formulation ran on this set.", ""]
+    word = iteration_word_for(runs)
+    out += [f"Failures charged at {fmt(time_charge)} s (the run's time limit per solve) and "
+            f"{fmt(iter_charge, '.0f')} iterations (the largest count of the set). Shift 10 "
+            "(times in ms). Ratios: this formulation's mean / the best mean of the set.", "",
+            "| formulation | start | success | time SGM [ms] | time ratio | time ratio, "
+            "unshifted GM | iterations SGM | iterations ratio | median time, accepted [ms] | "
+            "median iterations, accepted | total time [s] |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for _, r in table.iterrows():
+        note = " (evaluations)" if word(r["formulation"]) != "iterations" else ""
+        out.append(f"| {r['formulation']}{note} | {r['start']} | {r['success']:.0%} "
+                   f"({r['solved']}/{r['steps']}) | {fmt(r['sgm_time_ms'])} | "
+                   f"{fmt(r['sgm_time_ms_ratio'], '.2f')} | {fmt(r['gm_time_ms_ratio'], '.3g')} | "
+                   f"{fmt(r['sgm_iterations'])} | {fmt(r['sgm_iterations_ratio'], '.2f')} | "
+                   f"{fmt(r['median_time_ms'])} | {fmt(r['median_iterations'], 'g')} | "
+                   f"{fmt(r['total_time_s'])} |")
+    for _, s in skipped.iterrows():
+        out.append(f"| {s['formulation']} | {s['start']} | skipped: {s['message']} "
+                   "| | | | | | | | |")
+    out.append("")
+
+    gain = warm_gain(table)
+    if len(gain):
+        out += ["Warm-start gain (cold / warm): of the shifted geometric means with failures "
+                "charged, and of the medians over accepted steps.", "",
+                "| formulation | time (SGM) | iterations (SGM) | time (medians) | "
+                "iterations (medians) |", "|---|---|---|---|---|"]
+        for _, g in gain.iterrows():
+            out.append(f"| {g['formulation']} | {fmt(g['sgm_time'], '.2f')} | "
+                       f"{fmt(g['sgm_iterations'], '.2f')} | {fmt(g['median_time'], '.2f')} | "
+                       f"{fmt(g['median_iterations'], '.2f')} |")
+        out.append("")
+
+    n_steps = steps["step"].nunique()
+    safe = name.replace("/", "_")
+    if n_steps > 1:
+        fig = os.path.join(figures_dir, f"profile_{safe}.png")
+        if plot_profiles(name, title, runs, steps, fig):
+            out += [f"![Performance profiles, {title}]({os.path.relpath(fig, results_dir)})", ""]
+        else:
+            os.remove(fig)
+            out += ["No step of this set was solved: no performance profile.", ""]
+
+    # Tables 1 and 2 of the reference report: accepted steps per iteration count.
+    ran = runs[runs["status"] != "skipped"]
+    cols = list(range(1, HISTOGRAM_MAX + 1))
+    out += ["Accepted steps per iteration count (the form of the report's Tables 1 and 2; "
+            "NLopt rows count objective evaluations).", "",
+            "| formulation | start | 0 | " + " | ".join(map(str, cols)) + f" | > {HISTOGRAM_MAX} "
+            "| failed |", "|---|---|" + "---|" * (len(cols) + 3)]
+    for _, run in ran.iterrows():
+        h = histogram(steps, run["formulation"], run["start"])
+        out.append(f"| {run['formulation']} | {run['start']} | {h[0]} | "
+                   + " | ".join(str(h[k]) for k in cols) + f" | {h['more']} | {h['failed']} |")
+    if runs["problem"].iloc[0] == "arch-curved" and n_steps == 1604:
+        out.append("| report Table 2 (BFGS, csolve) | warm | 0 | "
+                   + " | ".join(str(REPORT_TABLE_2.get(k, 0)) for k in cols) + " | 0 | 0 |")
+    out.append("")
+    if n_steps > 1:
+        fig = os.path.join(figures_dir, f"iterations_{safe}.png")
+        if plot_histograms(title, runs, steps, fig, word):
+            out += [f"![Iterations per step, {title}]({os.path.relpath(fig, results_dir)})", ""]
+    return out
+
+
+def scaling_rows(bench):
+    """Rows of scaling_benchmark (BlockColdSolve/<formulation>/n:<n>)."""
+    s = bench[bench["run_name"].astype(str).str.startswith("BlockColdSolve/")].copy()
+    if s.empty:
+        return s
+    parts = s["run_name"].str.split("/")
+    s["formulation"] = parts.str[1]
+    s["n"] = parts.str[2].str.replace("n:", "", regex=False).astype(int)
+    if "d" not in s:
+        s["d"] = np.nan
+    s["d"] = s["d"].fillna(2 * (s["n"] + 1) ** 2)
+    return s
+
+
+def scaling_section(results_dir, figures_dir):
+    path = os.path.join(results_dir, "bench", "scaling_benchmark.json")
+    if not os.path.exists(path):
+        return ["## Scaling of the P1 cold solve", "", "No `bench/scaling_benchmark.json` "
+                "(run `scripts/run_bench.sh`).", ""]
+    _, bench = read_benchmarks(path)
+    s = scaling_rows(bench)
+    out = ["## Scaling of the P1 cold solve (`scaling_benchmark`)", "",
+           "One fixed-load solve of P1 `block` from the cold start (g0 = -1, r0 = +1) by a fresh "
+           "formulation (symbolic analysis included), median of the repetitions (n >= 200: one "
+           "solve). Growth exponent: least-squares slope of log time against log d over the "
+           "verified sizes. Memory: peak resident set during the solve and its increase over the "
+           "resident set before it.", ""]
+    if s.empty:
+        return out + ["No scaling benchmark rows.", ""]
+    ns = sorted(s["n"].unique())
+    out += ["| formulation | " + " | ".join(f"n = {n} (d = {2 * (n + 1) ** 2})" for n in ns)
+            + " | exponent of d | fitted over n |", "|---|" + "---|" * (len(ns) + 2)]
+    reasons = {}
+    for f in dict.fromkeys(s["formulation"]):
+        g = s[s["formulation"] == f]
+        cells = []
+        for n in ns:
+            r = g[g["n"] == n]
+            if r.empty:
+                cells.append("")
+                continue
+            r = r.iloc[0]
+            if r["error_occurred"]:
+                msg = str(r["error_message"])
+                key = len(reasons) + 1 if msg not in reasons else reasons[msg]
+                reasons.setdefault(msg, key)
+                cells.append(f"({reasons[msg]})")
+            else:
+                mem = r.get("peak_rss_mb", np.nan)
+                cells.append(f"{fmt(r['seconds'])} s, {fmt(r.get('iterations'), '.0f')} it, "
+                             f"{fmt(mem, '.0f')} MB")
+        ok = g[~g["error_occurred"]]
+        k = growth_exponent(ok["d"], ok["seconds"])
+        over = ", ".join(str(n) for n in sorted(ok["n"])) if len(ok) >= 2 else "-"
+        out.append(f"| {f} | " + " | ".join(cells) + f" | {fmt(k, '.2f')} | {over} |")
+    out.append("")
+    if reasons:
+        out += ["Not timed:", ""]
+        out += [f"- ({k}) {m}" for m, k in reasons.items()]
+        out.append("")
+    if "solve_mem_mb" in s:
+        ok = s[~s["error_occurred"]]
+        big = ok[ok["n"] == ok["n"].max()]
+        if len(big):
+            out += ["Memory added by the solve at the largest verified n: "
+                    + "; ".join(f"{r['formulation']} {fmt(r['solve_mem_mb'], '.0f')} MB "
+                                f"({fmt(r['solve_mem_mb'] * 1048576 / r['d'], '.0f')} bytes per dof)"
+                                for _, r in big.iterrows()) + ".", ""]
+    fig = os.path.join(figures_dir, "scaling_block.png")
+    if plot_scaling(s, fig):
+        out += [f"![Scaling of the P1 cold solve]({os.path.relpath(fig, results_dir)})", ""]
+    return out
+
+
+def step_benchmark_section(results_dir):
+    path = os.path.join(results_dir, "bench", "formulation_step_benchmark.json")
+    if not os.path.exists(path):
+        return []
+    ctx, bench = read_benchmarks(path)
+    b = bench[bench["run_name"].astype(str).str.startswith("FormulationStep/")].copy()
+    if b.empty:
+        return []
+    parts = b["run_name"].str.split("/")
+    b["problem"], b["formulation"], b["start"], b["label"] = parts.str[1], parts.str[2], parts.str[3], parts.str[4]
+    b["k"] = parts.str[5].str.replace("step:", "", regex=False)
+    out = ["## One replayed step (`formulation_step_benchmark`)", "",
+           "Google Benchmark timing of single replayed steps of the reference path (implicit-fb), "
+           "each formulation starting from the same state with the same prediction (warm) or its "
+           "fixed start (cold); median of the repetitions (nlopt-mpcc: one solve). A cell is "
+           "time and iterations, or the reason it was not timed.", ""]
+    reasons = {}
+    for problem in dict.fromkeys(b["problem"]):
+        g = b[b["problem"] == problem]
+        where = ctx.get(f"{problem}_steps")
+        labels = list(dict.fromkeys(zip(g["label"], g["k"])))
+        out += [f"**{PROBLEM_LABEL.get(problem, problem)}**" + (f" (reference path: {where})" if where else ""), "",
+                "| formulation | start | " + " | ".join(f"{lab}, step {k}" for lab, k in labels) + " |",
+                "|---|---|" + "---|" * len(labels)]
+        for (f, start), h in g.groupby(["formulation", "start"], sort=False):
+            cells = []
+            for lab, k in labels:
+                r = h[(h["label"] == lab) & (h["k"] == k)]
+                if r.empty:
+                    cells.append("")
+                    continue
+                r = r.iloc[0]
+                if r["error_occurred"]:
+                    msg = str(r["error_message"])
+                    short = msg.split(":")[0] if "cannot express" not in msg else msg
+                    reasons.setdefault(short, len(reasons) + 1)
+                    cells.append(f"({reasons[short]})")
+                else:
+                    cells.append(f"{fmt(r['seconds'] * 1e3)} ms, {fmt(r.get('iterations'), '.0f')} it")
+            out.append(f"| {f} | {start} | " + " | ".join(cells) + " |")
+        out.append("")
+    if reasons:
+        out += ["Not timed (the benchmark's error message; details in the JSON):", ""]
+        out += [f"- ({k}) {m}" for m, k in reasons.items()]
+        out.append("")
+    return out
+
+
+def write(results_dir):
+    """Writes results_dir/COMPARISON.md and results_dir/figures/comparison/*.png."""
+    results_dir = os.path.abspath(results_dir)
+    figures_dir = os.path.join(results_dir, "figures", "comparison")
+    os.makedirs(figures_dir, exist_ok=True)
+    out = ["# Comparison of formulations", "",
+           "Generated by `results/plotlib/comparison.py` from the CSV records under `compare/` "
+           "(`scripts/run_compare.sh`) and the Google Benchmark JSON under `bench/` "
+           "(`scripts/run_bench.sh`). Protocol: `../shared/spec/COMPARISON.md`; replay mode: "
+           "every formulation x start solves the same steps of the reference path "
+           "(implicit-fb), each from the reference's previous accepted state.", ""]
+    out += machine_lines(results_dir)
+    out += ["Absolute times are machine dependent; the ratios measured in one run are the "
+            "figures to quote. For the NLopt formulations `iterations` counts objective "
+            "evaluations (NLopt has no iteration counter).", ""]
+    sets = list(comparison_sets(results_dir))
+    if not sets:
+        out += ["No comparison records under `compare/` (run `scripts/run_compare.sh`).", ""]
+    for name, runs, steps in sets:
+        out += set_section(name, runs, steps, figures_dir, results_dir)
+    out += scaling_section(results_dir, figures_dir)
+    out += step_benchmark_section(results_dir)
+    path = os.path.join(results_dir, "COMPARISON.md")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+    return path
+
+
+if __name__ == "__main__":
+    import sys
+    print(write(sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))))
