@@ -23,6 +23,7 @@ import json
 import math
 import os
 import platform
+import re
 
 import numpy as np
 import pandas as pd
@@ -31,6 +32,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from matplotlib.patches import Patch  # noqa: E402
 
 SHIFT = 10.0
 # Times enter the shifted means in milliseconds, so the shift is 10 ms. The shifted mean lies
@@ -42,7 +44,8 @@ TIME_UNIT_MS = 1e3
 PROBLEM_LABEL = {"block": "P1 block", "arch-flat": "P2 arch-flat", "arch-curved": "P3 arch-curved"}
 # The reference report's Table 2 (P3, BFGS quasi-Newton csolve, 1604 steps): steps per count.
 REPORT_TABLE_2 = {3: 1081, 4: 379, 5: 100, 6: 6, 7: 7, 8: 10, 9: 9, 10: 10, 12: 2}
-HISTOGRAM_MAX = 12  # histogram columns 1..12, then "> 12"
+HISTOGRAM_MAX = 12  # histogram columns 0..12, then the ranges below (the NLPs' counts)
+HISTOGRAM_RANGES = [(13, 20), (21, 50), (51, 100), (101, None)]
 
 
 # --- the aggregation maths (unit-tested in tests/python/test_comparison.py) -----------------
@@ -156,7 +159,8 @@ def machine_lines(results_dir):
                     f"{ctx.get('num_cpus', '?')} CPUs"
                     + (f" at {mhz} MHz" if mhz else "")
                     + f", host `{ctx.get('host_name', '?')}`, benchmarks run {ctx.get('date', '?')}"
-                    + f", library build type {ctx.get('library_build_type', '?')}."]
+                    + ". (The JSON's `library_build_type` is that of Debian's Google Benchmark "
+                    "library, not of contactbench, which is built in Release.)"]
     model = "unknown"
     try:
         with open("/proc/cpuinfo") as f:
@@ -226,7 +230,13 @@ def warm_gain(table):
             continue
         w, c = w.iloc[0], c.iloc[0]
         div = lambda a, b: a / b if b and b == b and a == a else float("nan")  # noqa: E731
-        rows.append(dict(formulation=f,
+        if not w["solved"] or not c["solved"]:
+            # With no solved step on one side the ratio would only restate the charges.
+            why = "neither start solves a step" if not w["solved"] and not c["solved"] else (
+                "warm solves no step" if not w["solved"] else "cold solves no step")
+            rows.append(dict(formulation=f, why=why))
+            continue
+        rows.append(dict(formulation=f, why="",
                          sgm_time=div(c["sgm_time_ms"], w["sgm_time_ms"]),
                          sgm_iterations=div(c["sgm_iterations"], w["sgm_iterations"]),
                          median_time=div(c["median_time_ms"], w["median_time_ms"]),
@@ -252,6 +262,8 @@ def histogram(steps, formulation, start):
     g = steps[(steps["formulation"] == formulation) & (steps["start"] == start)]
     acc = g[g["accepted"].astype(bool)]["iterations"].astype(int)
     counts = {k: int((acc == k).sum()) for k in range(0, HISTOGRAM_MAX + 1)}
+    for lo, hi in HISTOGRAM_RANGES:
+        counts[(lo, hi)] = int(((acc >= lo) & ((acc <= hi) if hi else True)).sum())
     counts["more"] = int((acc > HISTOGRAM_MAX).sum())
     counts["failed"] = int(len(g) - len(acc))
     return counts
@@ -269,7 +281,7 @@ def _colours(formulations):
 
 def plot_profiles(name, title, runs, steps, path):
     """Time and iteration profiles side by side; False when nothing was solved."""
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    fig, axes = plt.subplots(1, 2, figsize=(15, 5.5))
     formulations = list(dict.fromkeys(runs[runs["status"] != "skipped"]["formulation"]))
     colours = _colours(formulations)
     any_line = False
@@ -283,58 +295,88 @@ def plot_profiles(name, title, runs, steps, path):
         top = max(2.0, float(finite) * 1.5) if finite == finite else 2.0
         taus = np.logspace(0, math.log10(top), 400)
         curves = profile(ratios, taus)
+        solved = table.notna().mean()
         for col, rho in curves.items():
             f, start = col.rsplit(" (", 1)
             start = start.rstrip(")")
             ax.step(taus, rho, where="post", color=colours[f], linestyle=STYLE.get(start, ":"),
-                    label=col, linewidth=1.8)
+                    label=f"{col}: {solved[col]:.0%} solved", linewidth=1.8)
             any_line = any_line or rho.max() > 0
         ax.set_xscale("log", base=2)
         ax.set_ylim(-0.02, 1.02)
-        ax.set_xlabel(f"tau: {what} within a factor tau of the best formulation (log2 scale)")
-        ax.set_ylabel("fraction of steps solved (verified)")
+        ax.set_xlabel(f"tau (log2 scale): {what} at most tau x the best formulation's")
+        ax.set_ylabel("fraction of steps solved within tau")
         ax.set_title(f"Performance profile of {what}")
         ax.grid(True, which="both", alpha=0.3)
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="center right", fontsize=9, title="formulation (start)")
     fig.suptitle(f"Dolan-More performance profiles: {title}")
-    fig.tight_layout(rect=(0, 0, 0.8, 0.95))
+    fig.tight_layout(rect=(0, 0, 0.75, 0.95))
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return any_line
 
 
+def histogram_bins(hi):
+    """(low, high, label) bins of iteration counts up to hi: one per count up to 20, then
+    doubling ranges (3-4, 5-8, ...) so that 2 and 100 iterations fit one readable axis."""
+    if hi <= 20:
+        return [(k, k, str(k)) for k in range(0, max(hi, 4) + 1)]
+    bins = [(0, 0, "0"), (1, 1, "1"), (2, 2, "2")]
+    lo = 3
+    while lo <= hi:
+        up = 2 * (lo - 1)
+        bins.append((lo, up, f"{lo}-{up}"))
+        lo = up + 1
+    return bins
+
+
 def plot_histograms(title, runs, steps, path, iteration_word):
+    """One panel per formulation: accepted steps per iteration count, warm and cold bars side
+    by side (bins of several counts when the counts run past 40)."""
     ran = runs[runs["status"] != "skipped"]
     formulations = list(dict.fromkeys(ran["formulation"]))
     if not formulations:
         return False
     cols = min(3, len(formulations))
     rows = math.ceil(len(formulations) / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 3.6 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.8 * rows), squeeze=False)
+    colour = {"warm": "tab:blue", "cold": "tab:orange"}
     for ax, f in zip(axes.flat, formulations):
         starts = list(ran[ran["formulation"] == f]["start"])
-        data = {}
+        data, total = {}, {}
         for s in starts:
             g = steps[(steps["formulation"] == f) & (steps["start"] == s)]
+            total[s] = len(g)
             data[s] = g[g["accepted"].astype(bool)]["iterations"].astype(int).to_numpy()
-        hi = max([int(v.max()) for v in data.values() if len(v)] + [1])
-        edges = np.arange(0.5, hi + 1.5) if hi <= 60 else np.linspace(0.5, hi + 0.5, 40)
-        width_ok = False
-        for s in starts:
-            if len(data[s]):
-                ax.hist(data[s], bins=edges, alpha=0.6, label=f"{s} ({len(data[s])} accepted)",
-                        color="tab:blue" if s == "warm" else "tab:orange")
-                width_ok = True
-            else:
-                ax.plot([], [], " ", label=f"{s}: no accepted step")
         word = iteration_word(f)
+        ax.set_title(f)
         ax.set_xlabel(f"{word} per step")
         ax.set_ylabel("accepted steps")
-        ax.set_title(f)
-        ax.legend(fontsize=8)
-        if width_ok and hi <= 60:
-            ax.set_xticks(range(1, hi + 1, max(1, hi // 10)))
+        if not any(len(v) for v in data.values()):
+            ax.text(0.5, 0.5, "no accepted step\n" + ", ".join(
+                f"{s}: 0 of {total[s]}" for s in starts), ha="center", va="center",
+                transform=ax.transAxes)
+            ax.set_yticks([])
+            ax.set_xticks([])
+            continue
+        hi = max(int(v.max()) for v in data.values() if len(v))
+        bins = histogram_bins(hi)
+        x = np.arange(len(bins))
+        with_data = [s for s in starts if len(data[s])]
+        bar = 0.8 / len(with_data)
+        handles = []
+        for s in starts:
+            c = colour.get(s, "tab:gray")
+            handles.append(Patch(color=c, label=f"{s}: {len(data[s])} of {total[s]} accepted"))
+            if not len(data[s]):
+                continue
+            i = with_data.index(s)
+            counts = [int(((data[s] >= lo) & (data[s] <= up)).sum()) for lo, up, _ in bins]
+            ax.bar(x + (i - (len(with_data) - 1) / 2) * bar, counts, width=bar, color=c)
+        ax.set_xticks(x, [label for _, _, label in bins],
+                      rotation=45 if len(bins) > 8 else 0, fontsize=8 if len(bins) > 8 else 10)
+        ax.legend(handles=handles, fontsize=8)
     for ax in list(axes.flat)[len(formulations):]:
         ax.axis("off")
     fig.suptitle(f"Iterations per accepted step: {title}")
@@ -408,8 +450,8 @@ def set_section(name, runs, steps, figures_dir, results_dir):
         note = " (evaluations)" if word(r["formulation"]) != "iterations" else ""
         out.append(f"| {r['formulation']}{note} | {r['start']} | {r['success']:.0%} "
                    f"({r['solved']}/{r['steps']}) | {fmt(r['sgm_time_ms'])} | "
-                   f"{fmt(r['sgm_time_ms_ratio'], '.2f')} | {fmt(r['gm_time_ms_ratio'], '.3g')} | "
-                   f"{fmt(r['sgm_iterations'])} | {fmt(r['sgm_iterations_ratio'], '.2f')} | "
+                   f"{fmt(r['sgm_time_ms_ratio'])} | {fmt(r['gm_time_ms_ratio'])} | "
+                   f"{fmt(r['sgm_iterations'])} | {fmt(r['sgm_iterations_ratio'])} | "
                    f"{fmt(r['median_time_ms'])} | {fmt(r['median_iterations'], 'g')} | "
                    f"{fmt(r['total_time_s'])} |")
     for _, s in skipped.iterrows():
@@ -424,6 +466,9 @@ def set_section(name, runs, steps, figures_dir, results_dir):
                 "| formulation | time (SGM) | iterations (SGM) | time (medians) | "
                 "iterations (medians) |", "|---|---|---|---|---|"]
         for _, g in gain.iterrows():
+            if g.get("why"):
+                out.append(f"| {g['formulation']} | n/a: {g['why']} | | | |")
+                continue
             out.append(f"| {g['formulation']} | {fmt(g['sgm_time'], '.2f')} | "
                        f"{fmt(g['sgm_iterations'], '.2f')} | {fmt(g['median_time'], '.2f')} | "
                        f"{fmt(g['median_iterations'], '.2f')} |")
@@ -441,18 +486,21 @@ def set_section(name, runs, steps, figures_dir, results_dir):
 
     # Tables 1 and 2 of the reference report: accepted steps per iteration count.
     ran = runs[runs["status"] != "skipped"]
-    cols = list(range(1, HISTOGRAM_MAX + 1))
+    cols = list(range(0, HISTOGRAM_MAX + 1)) + HISTOGRAM_RANGES
+    head = [str(k) if isinstance(k, int) else (f"{k[0]}-{k[1]}" if k[1] else f"> {k[0] - 1}")
+            for k in cols]
     out += ["Accepted steps per iteration count (the form of the report's Tables 1 and 2; "
             "NLopt rows count objective evaluations).", "",
-            "| formulation | start | 0 | " + " | ".join(map(str, cols)) + f" | > {HISTOGRAM_MAX} "
-            "| failed |", "|---|---|" + "---|" * (len(cols) + 3)]
+            "| formulation | start | " + " | ".join(head) + " | failed |",
+            "|---|---|" + "---|" * (len(cols) + 1)]
     for _, run in ran.iterrows():
         h = histogram(steps, run["formulation"], run["start"])
-        out.append(f"| {run['formulation']} | {run['start']} | {h[0]} | "
-                   + " | ".join(str(h[k]) for k in cols) + f" | {h['more']} | {h['failed']} |")
+        out.append(f"| {run['formulation']} | {run['start']} | "
+                   + " | ".join(str(h[k]) for k in cols) + f" | {h['failed']} |")
     if runs["problem"].iloc[0] == "arch-curved" and n_steps == 1604:
-        out.append("| report Table 2 (BFGS, csolve) | warm | 0 | "
-                   + " | ".join(str(REPORT_TABLE_2.get(k, 0)) for k in cols) + " | 0 | 0 |")
+        out.append("| report Table 2 (BFGS, csolve), 1604 steps | | "
+                   + " | ".join(str(REPORT_TABLE_2.get(k, 0)) if isinstance(k, int) else "0"
+                                for k in cols) + " | |")
     out.append("")
     if n_steps > 1:
         fig = os.path.join(figures_dir, f"iterations_{safe}.png")
@@ -504,9 +552,8 @@ def scaling_section(results_dir, figures_dir):
                 continue
             r = r.iloc[0]
             if r["error_occurred"]:
-                msg = str(r["error_message"])
-                key = len(reasons) + 1 if msg not in reasons else reasons[msg]
-                reasons.setdefault(msg, key)
+                msg = short_reason(str(r["error_message"]))
+                reasons.setdefault(msg, len(reasons) + 1)
                 cells.append(f"({reasons[msg]})")
             else:
                 mem = r.get("peak_rss_mb", np.nan)
@@ -533,6 +580,17 @@ def scaling_section(results_dir, figures_dir):
     if plot_scaling(s, fig):
         out += [f"![Scaling of the P1 cold solve]({os.path.relpath(fig, results_dir)})", ""]
     return out
+
+
+def short_reason(message):
+    """'not verified: eq .. comp .. (SOLVER MESSAGE, N iterations)' -> 'not verified: SOLVER
+    MESSAGE' with the numbers dropped, so equal reasons group; other messages as they are."""
+    m = re.match(r"^(.*?): eq .*? \((.*), \d+ iterations\)$", message)
+    if not m:
+        return message
+    why = re.sub(r" at iteration \d+", "", m.group(2))
+    why = re.sub(r"\(zero pivot in column \d+\)", "(zero pivot)", why)
+    return f"{m.group(1)}: {why}"
 
 
 def step_benchmark_section(results_dir):
@@ -568,8 +626,7 @@ def step_benchmark_section(results_dir):
                     continue
                 r = r.iloc[0]
                 if r["error_occurred"]:
-                    msg = str(r["error_message"])
-                    short = msg.split(":")[0] if "cannot express" not in msg else msg
+                    short = short_reason(str(r["error_message"]))
                     reasons.setdefault(short, len(reasons) + 1)
                     cells.append(f"({reasons[short]})")
                 else:
