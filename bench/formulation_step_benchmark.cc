@@ -51,8 +51,8 @@
 namespace cb {
 namespace {
 
-constexpr double kTolerance = 1e-8;     // the verdict's, as in every run
-constexpr double kTimeLimitS = 5.0;     // per solve, as in scripts/run_compare.sh
+constexpr double kTolerance = 1e-8;  // the verdict's, as in every run
+constexpr double kTimeLimitS = 5.0;  // per solve, as in scripts/run_compare.sh
 constexpr int kEarlyStep = 10;
 
 // A problem's reference path, traced once.
@@ -125,8 +125,8 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     auto formulation = MakeFormulation(name, FormulationConfig{});
     const ConstraintKind kind = ref->path.kinds[k - 1];
     if (!formulation->Supports(kind)) {
-      state.SkipWithError((name + " cannot express the step constraint '" + ToString(kind) + "'")
-                              .c_str());
+      state.SkipWithError(
+          (name + " cannot express the step constraint '" + ToString(kind) + "'").c_str());
       return;
     }
     SolveControls controls;
@@ -189,8 +189,8 @@ std::vector<std::pair<std::string, int>> RepresentativeSteps(const Reference& re
   if (steps < 2) return out;
   const int early = std::min(kEarlyStep, steps);
   out.emplace_back("early", early);
-  const auto contact = std::find_if(ref.n_contact.begin(), ref.n_contact.end(),
-                                    [](int n) { return n > 0; });
+  const auto contact =
+      std::find_if(ref.n_contact.begin(), ref.n_contact.end(), [](int n) { return n > 0; });
   if (contact != ref.n_contact.end()) {
     const int k = std::max(2, static_cast<int>(contact - ref.n_contact.begin()) + 1);
     if (k != early) out.emplace_back("first-contact", k);
@@ -215,8 +215,8 @@ int main(int argc, char** argv) {
     Stopwatch clock;
     auto ref = TraceReference(problem);
     const auto steps = RepresentativeSteps(*ref);
-    std::string where = std::to_string(ref->path.states.size()) + " accepted steps (" +
-                        ref->summary.message + ")";
+    std::string where =
+        std::to_string(ref->path.states.size()) + " accepted steps (" + ref->summary.message + ")";
     for (const auto& [label, k] : steps) {
       where += "; " + label + " = step " + std::to_string(k) + " (lambda " +
                std::to_string(ref->path.states[k - 1].lambda) + ", " +
