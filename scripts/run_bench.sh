@@ -10,6 +10,9 @@
 #
 # Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
 # its own (solves of seconds are measured once; see each binary's header comment).
+# Run time on the 2-core machine of the README, estimated from the single benchmarks' times
+# (not measured end to end on a quiet machine): about 12 minutes (implicit_fb_benchmark ~4,
+# formulation_step_benchmark ~3, scaling_benchmark ~5: n = 400 and ipopt-energy dominate).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), REPETITIONS (3),
 # SKIP_SETUP=1 to use an existing build without running setup.sh.
