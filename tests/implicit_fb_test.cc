@@ -89,9 +89,13 @@ TEST(ImplicitFbTest, ColdStartRhoMatchesTheReport) {
 // The warm start point satisfies (30), (32) and (33) exactly when |rho*| > rho_ (METHOD.md
 // section 4), with gamma = 1 and with gamma < 1.
 void ExpectWarmStartSatisfiesRows(double reaction_sign) {
-  const Problem p = SmallArch();
+  // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
+  // dofs).
+  const Problem p =
+      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
+  ASSERT_GE(d, 1000);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State base = ZeroState(*p.model);
@@ -138,9 +142,13 @@ class ImplicitFbJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
 
 TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   const JacobianCase c = GetParam();
-  const Problem p = SmallArch();
+  // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
+  // dofs).
+  const Problem p =
+      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
+  ASSERT_GE(d, 1000);
   std::mt19937 rng(11 + c.eta);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State base = ZeroState(*p.model);
@@ -268,9 +276,27 @@ void ExpectCondensedStepsMatchFullSteps(const StepProblem& step, const StartPoin
     ASSERT_TRUE(lu->Solve(f, &dx_lu));
     ASSERT_TRUE(condensed->Factorize(jac)) << condensed->message();
     ASSERT_TRUE(condensed->Solve(f, &dx)) << condensed->message();
-    // Both answers carry rounding of about eps cond(J) relative to the iterate's scale.
-    EXPECT_LE((dx - dx_lu).norm(), 1e-9 * dx_lu.norm() + 1e-13 * (1.0 + x.norm()))
-        << "iterate " << k;
+    // The same step up to rounding: the condensed step solves the full system at least as
+    // accurately as the LU, and where the LU's own residual shows a well-conditioned system the
+    // two steps agree (on the ill-conditioned iterates of the long arch both carry errors of
+    // about eps cond(J), and the LU's residual is the larger).
+    // Normwise backward errors ||J dx - f|| / (||J|| ||dx|| + ||f||), inf-norms.
+    Vec row_sums = Vec::Zero(jac.rows());
+    for (int j = 0; j < jac.outerSize(); ++j) {
+      for (SpMat::InnerIterator it(jac, j); it; ++it) row_sums[it.row()] += std::abs(it.value());
+    }
+    const double jac_norm = row_sums.maxCoeff();
+    auto backward = [&](const Vec& step) {
+      return (jac * step - f).lpNorm<Eigen::Infinity>() /
+             (jac_norm * step.lpNorm<Eigen::Infinity>() + f.lpNorm<Eigen::Infinity>());
+    };
+    const double omega = backward(dx), omega_lu = backward(dx_lu);
+    EXPECT_LE(omega, std::max(4.0 * omega_lu, 1e-14)) << "iterate " << k;
+    const double res_lu = (jac * dx_lu - f).norm() / f.norm();
+    if (res_lu <= 1e-13) {
+      EXPECT_LE((dx - dx_lu).norm(), 1e-9 * dx_lu.norm() + 1e-13 * (1.0 + x.norm()))
+          << "iterate " << k;
+    }
     ++compared;
     // Newton steps, damped to at most 0.5 in any unknown (far from the answer full steps can
     // leave the region where the model is defined).
@@ -282,19 +308,21 @@ void ExpectCondensedStepsMatchFullSteps(const StepProblem& step, const StartPoin
   if (expect_condensed) {
     EXPECT_EQ(stats->condensed_factorizations, compared);
     EXPECT_EQ(stats->fallback_solves, 0);
+  } else {
+    EXPECT_GT(stats->condensed_factorizations + stats->fallback_factorizations, 0);
   }
 }
 
 TEST(ImplicitFbCondensedTest, BlockColdStartStepsMatch) {
-  // n = 8: Kc factorised whole; n = 30 (d = 1922, 62 contact dofs): the contact-block path.
-  for (const char* n : {"8", "30"}) {
+  // n = 25 (d = 1352, 52 contact dofs): the contact-block path; n = 8 (d = 162): the LU.
+  for (const char* n : {"8", "25"}) {
     const Problem p = MakeProblem("block", {{"n", n}});
     StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
     StartPoint cold;
     cold.kind = StartKind::kCold;
     for (EtaCase eta : {EtaCase::kCase1, EtaCase::kNonsmooth}) {
       SCOPED_TRACE(std::string("n = ") + n + ", eta " + std::to_string(static_cast<int>(eta)));
-      ExpectCondensedStepsMatchFullSteps(step, cold, eta, true);
+      ExpectCondensedStepsMatchFullSteps(step, cold, eta, p.model->num_dofs() >= 1000);
     }
   }
 }
@@ -303,9 +331,13 @@ TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
   // The curved obstacle adds the curvature term to the stiffness; a warm start from a state in
   // contact. The kink row makes one pair's spring negative: condensed or fallback, the step is
   // the same.
-  const Problem p = SmallArch();
+  // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
+  // dofs).
+  const Problem p =
+      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
+  ASSERT_GE(d, 1000);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State base = ZeroState(*p.model);

@@ -714,8 +714,9 @@ void ExpectCondensedMatchesLu(int d, int nc, int spread, bool contact_block) {
   EXPECT_GT(stats->refinement_sweeps, 0);
 }
 
-TEST(CondensedCholeskyTest, SmallSystemMatchesTheFullLu) {
-  ExpectCondensedMatchesLu(300, 40, 7, false);
+TEST(CondensedCholeskyTest, WholeCondensedMatrixPathMatchesTheFullLu) {
+  // Many contact dofs (400 of 1200): Kc factorised whole by CHOLMOD.
+  ExpectCondensedMatchesLu(1200, 200, 5, false);
 }
 
 TEST(CondensedCholeskyTest, ContactBlockPathMatchesTheFullLu) {
@@ -723,8 +724,23 @@ TEST(CondensedCholeskyTest, ContactBlockPathMatchesTheFullLu) {
   ExpectCondensedMatchesLu(1500, 60, 11, true);
 }
 
-TEST(CondensedCholeskyTest, FallsBackWhereTheStructureDoesNotHold) {
+TEST(CondensedCholeskyTest, SmallSystemsGoToTheLu) {
   const int d = 300, nc = 40;
+  const JacobianStructure structure{d, nc, 0.3};
+  auto cholmod = MakeLinearSolver("cholmod");
+  cholmod->SetStructure(&structure);
+  const SpMat a = StructuredJacobian(d, nc, 7, 0.3, 5);
+  const Vec b = Vec::LinSpaced(a.rows(), -1.0, 2.0);
+  Vec x;
+  ASSERT_TRUE(cholmod->Factorize(a)) << cholmod->message();
+  ASSERT_TRUE(cholmod->Solve(b, &x)) << cholmod->message();
+  EXPECT_LE((a * x - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(CondensedStats(*cholmod)->fallback_factorizations, 1);
+  EXPECT_EQ(CondensedStats(*cholmod)->condensed_factorizations, 0);
+}
+
+TEST(CondensedCholeskyTest, FallsBackWhereTheStructureDoesNotHold) {
+  const int d = 1200, nc = 40;
   const JacobianStructure structure{d, nc, 0.3};
   auto cholmod = MakeLinearSolver("cholmod");
   cholmod->SetStructure(&structure);
@@ -745,10 +761,10 @@ TEST(CondensedCholeskyTest, FallsBackWhereTheStructureDoesNotHold) {
 }
 
 TEST(CondensedCholeskyTest, IndefiniteStiffnessIsStillSolvedExactly) {
-  // An indefinite Kc: CHOLMOD's simplicial LDL^T (chosen for small matrices) may factorise it
-  // without pivoting, a supernodal LL^T refuses it and the LU takes over; either way the
-  // refinement on the full system keeps the answer exact.
-  for (int d : {300, 1500}) {
+  // An indefinite Kc: CHOLMOD's simplicial LDL^T (chosen for sparse enough factors) may
+  // factorise it without pivoting, a supernodal LL^T refuses it and the LU takes over; either
+  // way the refinement on the full system keeps the answer exact.
+  for (int d : {1200, 1500}) {
     const int nc = 40;
     const JacobianStructure structure{d, nc, 0.3};
     auto cholmod = MakeLinearSolver("cholmod");

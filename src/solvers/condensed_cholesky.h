@@ -17,7 +17,8 @@
 // The refinement also absorbs the rounding of large springs and the one-ulp asymmetry of
 // G^T diag(w) G against H diag(.) G.
 //
-// Fallback (the "klu" full-system LU): no structure given, a pattern that does not have the
+// Fallback (the "klu" full-system LU): a small system (d < 1000, where the LU's refactorisation
+// is faster than the condensation's fixed costs), no structure given, a pattern without the
 // block form, a Kc that is not positive definite (a tangent stiffness past a limit point, the
 // kink row's negative spring), a degenerate pair (Da = Db = 0), a singular border, or a
 // refinement that does not reach kAcceptBackwardError. The answer is then the LU's.
