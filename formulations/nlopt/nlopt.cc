@@ -4,11 +4,13 @@
 // kept (std::exception_ptr) and rethrown once nlopt_optimize has returned.
 #include "formulations/nlopt/nlopt.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/timer.h"
@@ -230,6 +232,22 @@ class NloptRun {
     }
   }
 
+  // A non-finite value from the model stops the run as a failure with that reason: NLopt's
+  // algorithms do not handle NaN (LBFGS has reported SUCCESS at a NaN objective, MMA and SLSQP
+  // run on to maxeval). Call inside a Guard body with what was just computed.
+  void CheckFinite(const char* what, const double* values, std::size_t m, const double* grad,
+                   std::size_t size) {
+    const bool finite =
+        std::all_of(values, values + m, [](double v) { return std::isfinite(v); }) &&
+        (grad == nullptr ||
+         std::all_of(grad, grad + size, [](double v) { return std::isfinite(v); }));
+    if (finite || stop_reason_ != StopReason::kNone) return;
+    stop_reason_ = StopReason::kNonFinite;
+    non_finite_ =
+        std::string(what) + " at evaluation " + std::to_string(result_->counts.residual_evals);
+    nlopt_force_stop(opt_);
+  }
+
   // Counting rule (nlopt.h): iterations = objective evaluations.
   void CountObjective(bool with_gradient) {
     ++result_->counts.iterations;
@@ -292,16 +310,20 @@ class NloptRun {
     // (An exception was rethrown before Finish, so no other forced stop reaches here.)
     if (stop_reason_ == StopReason::kInterrupted) result_->status = Status::kStoppedByCaller;
     if (stop_reason_ == StopReason::kTimeLimit) result_->status = Status::kLimitReached;
+    if (stop_reason_ == StopReason::kNonFinite) result_->status = Status::kFailed;
     result_->message = "NLopt " + text;
     if (stop_reason_ == StopReason::kTimeLimit) result_->message += " (time limit)";
     if (stop_reason_ == StopReason::kInterrupted) result_->message += " (interrupted)";
+    if (stop_reason_ == StopReason::kNonFinite) {
+      result_->message += " (stopped: the model gave a non-finite " + non_finite_ + ")";
+    }
     if (code == NLOPT_ROUNDOFF_LIMITED) result_->message += " (point kept; the verdict decides)";
     const char* errmsg = nlopt_get_errmsg(opt_);
     if (errmsg != nullptr) result_->message += std::string(": ") + errmsg;
   }
 
  private:
-  enum class StopReason { kNone, kInterrupted, kTimeLimit };
+  enum class StopReason { kNone, kInterrupted, kTimeLimit, kNonFinite };
   nlopt_opt opt_;
   nlopt_algorithm algorithm_;
   const SolveControls& controls_;
@@ -309,6 +331,7 @@ class NloptRun {
   Stopwatch clock_;
   std::exception_ptr error_;
   StopReason stop_reason_ = StopReason::kNone;
+  std::string non_finite_;  // what was not finite, for the message
   Vec last_x_;
 };
 
@@ -340,6 +363,7 @@ double MeritCallback(unsigned n, const double* x, double* grad, void* data) {
     value = d.objective->Evaluate(d.x, grad != nullptr ? &d.gradient : nullptr);
     if (grad != nullptr) Eigen::Map<Vec>(grad, n) = d.gradient;
     d.run->CountObjective(grad != nullptr);
+    d.run->CheckFinite("objective", &value, 1, grad, n);
     const ImplicitFbLayout& l = d.objective->layout();
     const Vec& f = d.objective->residual();
     const Vec x = d.objective->FromNlopt(d.x);
@@ -447,6 +471,7 @@ double EnergyObjective(unsigned n, const double* y, double* grad, void* data) {
     d.value = value;
     if (grad != nullptr) Eigen::Map<Vec>(grad, n) = d.gradient;
     d.run->CountObjective(grad != nullptr);
+    d.run->CheckFinite("objective", &value, 1, grad, n);
     d.run->Record(value, std::numeric_limits<double>::quiet_NaN(),
                   std::numeric_limits<double>::quiet_NaN(), d.y);
   });
@@ -463,6 +488,7 @@ void EnergyConstraints(unsigned m, double* values, unsigned n, const double* y, 
   const bool done = d.run->Guard([&] {
     d.problem->Constraints(Eigen::Map<const Vec>(y, n), values, grad);
     d.run->CountConstraints(grad != nullptr);
+    d.run->CheckFinite("constraint", values, m, grad, static_cast<std::size_t>(m) * n);
     double violation = 0.0;
     for (unsigned p = 0; p < m; ++p) violation = std::max(violation, values[p]);
     d.run->RecordViolation(violation);
@@ -585,6 +611,7 @@ double MpccObjective(unsigned n, const double* z, double* grad, void* data) {
     value = d.problem->Objective(d.z, grad != nullptr ? &d.gradient : nullptr);
     if (grad != nullptr) Eigen::Map<Vec>(grad, n) = d.gradient;
     d.run->CountObjective(grad != nullptr);
+    d.run->CheckFinite("objective", &value, 1, grad, n);
     const ImplicitFbLayout& l = d.problem->layout();
     d.run->Record(value, std::numeric_limits<double>::quiet_NaN(), CompRes(d.z, l.g(), l.r(), l.nc),
                   d.z);
@@ -602,6 +629,7 @@ void MpccEqualities(unsigned m, double* values, unsigned n, const double* z, dou
   const bool done = d.run->Guard([&] {
     d.problem->Equalities(Eigen::Map<const Vec>(z, n), values, grad);
     d.run->CountConstraints(grad != nullptr);
+    d.run->CheckFinite("constraint", values, m, grad, static_cast<std::size_t>(m) * n);
     double violation = 0.0;
     for (unsigned i = 0; i < m; ++i) violation = std::max(violation, std::abs(values[i]));
     d.run->RecordViolation(violation);

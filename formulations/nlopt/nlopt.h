@@ -13,7 +13,9 @@
 //  - details["nlopt_result"] = "<code> <NAME>" (the raw nlopt_result); Status: SUCCESS,
 //    STOPVAL/FTOL/XTOL_REACHED -> kConverged; MAXEVAL/MAXTIME_REACHED -> kLimitReached;
 //    a stop forced because SolveControls::interrupted() said so -> kStoppedByCaller, because of
-//    the time limit -> kLimitReached (whatever code NLopt returns then); every failure
+//    the time limit -> kLimitReached (whatever code NLopt returns then); a non-finite
+//    objective, constraint or gradient from the model -> kFailed (forced stop; the message
+//    names what and at which evaluation); every failure
 //    (ROUNDOFF_LIMITED included) -> kFailed, but the point NLopt returned is kept: the verdict
 //    decides.
 //  - SolveControls are polled in every callback; interrupted() or the time limit force a stop

@@ -1,0 +1,56 @@
+// The inputs the reader fuzzers (fuzz/, scripts/run_fuzz.sh) found crashes with, kept in
+// fuzz/regressions/, and the seed corpus: each is handed to both readers exactly as the fuzzers
+// do, in the ordinary test binary (no libFuzzer). Refusal with std::invalid_argument is the
+// contract; any other exception fails the test, and under scripts/check_sanitizers.sh so does
+// any memory or undefined-behaviour error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../fuzz/readers.h"
+
+namespace cb {
+namespace {
+
+const std::filesystem::path kRoot = std::filesystem::path(__FILE__).parent_path().parent_path();
+
+std::vector<std::filesystem::path> FilesUnder(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  if (!std::filesystem::exists(dir)) return files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.is_regular_file() && e.path().filename().string()[0] != '.') files.push_back(e.path());
+  }
+  return files;
+}
+
+void FeedBothReaders(const std::filesystem::path& file) {
+  SCOPED_TRACE(file.string());
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const auto* data = reinterpret_cast<const std::uint8_t*>(text.data());
+  EXPECT_NO_THROW(fuzz::ProblemFileInput(data, text.size(), (kRoot / "examples").string()));
+  EXPECT_NO_THROW(fuzz::GmshInput(data, text.size()));
+}
+
+TEST(FuzzRegressionsTest, KeptCrashInputsAreRefusedOrRead) {
+  const auto files = FilesUnder(kRoot / "fuzz" / "regressions");
+  for (const auto& file : files) FeedBothReaders(file);
+  RecordProperty("inputs", static_cast<int>(files.size()));
+}
+
+TEST(FuzzRegressionsTest, SeedCorpusAndExamplesAreRefusedOrRead) {
+  auto files = FilesUnder(kRoot / "fuzz" / "corpus");
+  const auto examples = FilesUnder(kRoot / "examples");
+  files.insert(files.end(), examples.begin(), examples.end());
+  ASSERT_FALSE(files.empty());
+  for (const auto& file : files) FeedBothReaders(file);
+}
+
+}  // namespace
+}  // namespace cb

@@ -1,0 +1,275 @@
+// Runs that stop keep what they did (issue 6): `contactbench run` interrupted by SIGINT or
+// SIGTERM finishes the record line it is writing, says where it stopped and exits with status 4;
+// a run killed with SIGKILL leaves only whole lines. The records are read back here with a
+// plain RFC 4180 reader.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+using Record = std::vector<std::string>;
+
+// The records of a CSV file and whether the file ends with a whole one (a line break outside
+// quotes). Quoted fields may hold commas, quotes ("") and line breaks.
+struct Csv {
+  std::vector<Record> records;
+  bool ends_whole = true;
+};
+
+Csv ReadCsv(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  Csv csv;
+  Record record;
+  std::string field;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      record.push_back(field);
+      field.clear();
+    } else if (c == '\n') {
+      record.push_back(field);
+      field.clear();
+      csv.records.push_back(record);
+      record.clear();
+    } else {
+      field += c;
+    }
+  }
+  csv.ends_whole = !quoted && field.empty() && record.empty();
+  return csv;
+}
+
+std::size_t CountLines(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+std::filesystem::path TempDir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() /
+             ("contactbench_interrupt_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Starts the CLI with stdout and stderr in `log`.
+pid_t Start(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
+  std::vector<std::string> args = {CONTACTBENCH_BINARY};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
+}
+
+// Waits until `file` has at least `lines` lines (true) or the process ended or 120 s passed.
+bool WaitForLines(pid_t pid, const std::filesystem::path& file, std::size_t lines) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (std::filesystem::exists(file) && CountLines(file) >= lines) return true;
+    int raw = 0;
+    if (waitpid(pid, &raw, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// Waits for the process (killing it after 120 s); the raw wait status, -1 on a timeout.
+int Wait(pid_t pid) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    int raw = 0;
+    if (waitpid(pid, &raw, WNOHANG) == pid) return raw;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  return -1;
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// Every record has the header's number of fields and the file ends with a whole record.
+void ExpectWholeRecords(const std::filesystem::path& path, const Csv& csv) {
+  ASSERT_FALSE(csv.records.empty()) << path;
+  EXPECT_TRUE(csv.ends_whole) << path << " ends inside a record";
+  const std::size_t width = csv.records.front().size();
+  for (std::size_t k = 1; k < csv.records.size(); ++k) {
+    EXPECT_EQ(csv.records[k].size(), width) << path << " record " << k;
+  }
+}
+
+std::map<std::string, std::size_t> Columns(const Record& header) {
+  std::map<std::string, std::size_t> columns;
+  for (std::size_t i = 0; i < header.size(); ++i) columns[header[i]] = i;
+  return columns;
+}
+
+const std::vector<std::string> kLongRun = {
+    "run", "--problem", "arch-curved", "--formulation", "implicit-fb", "--steps", "100000"};
+
+class InterruptTest : public testing::TestWithParam<int> {};
+
+TEST_P(InterruptTest, StopsWithStatus4SayingWhereAndKeepsWholeRecords) {
+  const int signal = GetParam();
+  const auto dir = TempDir(signal == SIGINT ? "int" : "term");
+  const auto log = dir / "log.txt";
+  auto args = kLongRun;
+  args.insert(args.end(), {"--out", dir.string()});
+  const pid_t pid = Start(args, log);
+  ASSERT_GT(pid, 0);
+  // Some steps in: the run is well under way (the header and 30 records).
+  ASSERT_TRUE(WaitForLines(pid, dir / "steps.csv", 31)) << ReadText(log);
+  ASSERT_EQ(kill(pid, signal), 0);
+  const int raw = Wait(pid);
+  ASSERT_TRUE(WIFEXITED(raw)) << "not a normal exit: " << raw << "\n" << ReadText(log);
+  EXPECT_EQ(WEXITSTATUS(raw), 4) << ReadText(log);
+
+  // The message says where it stopped and how many steps were accepted.
+  const std::string output = ReadText(log);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(output, m,
+                                std::regex(R"(stopped by the caller (at|after) step (\d+) \((\d+) )"
+                                           R"(accepted steps)")))
+      << output;
+  const bool during = m[1] == "at";
+  const int stopped_step = std::stoi(m[2]);
+  const int accepted_steps = std::stoi(m[3]);
+  EXPECT_NE(output.find(dir.string()), std::string::npos) << output;
+
+  const Csv steps = ReadCsv(dir / "steps.csv");
+  ExpectWholeRecords(dir / "steps.csv", steps);
+  ExpectWholeRecords(dir / "iterations.csv", ReadCsv(dir / "iterations.csv"));
+  auto col = Columns(steps.records.front());
+  for (const char* name : {"step", "accepted", "status", "verified"}) {
+    ASSERT_TRUE(col.count(name)) << name;
+  }
+  // The accepted steps are 1, 2, ..., accepted_steps, each verified; the last record is the
+  // step it stopped at (accepted when it stopped after it, the interrupted attempt otherwise).
+  int accepted = 0;
+  for (std::size_t k = 1; k < steps.records.size(); ++k) {
+    const Record& r = steps.records[k];
+    if (r[col["accepted"]] != "true") continue;
+    ++accepted;
+    EXPECT_EQ(std::stoi(r[col["step"]]), accepted);
+    EXPECT_EQ(r[col["verified"]], "true");
+  }
+  EXPECT_EQ(accepted, accepted_steps);
+  EXPECT_GE(accepted, 30);
+  const Record& last = steps.records.back();
+  EXPECT_EQ(std::stoi(last[col["step"]]), stopped_step);
+  if (during) {
+    EXPECT_EQ(last[col["accepted"]], "false");
+    EXPECT_EQ(last[col["status"]], "stopped_by_caller");
+    EXPECT_EQ(stopped_step, accepted_steps + 1);
+  } else {
+    EXPECT_EQ(last[col["accepted"]], "true");
+    EXPECT_EQ(stopped_step, accepted_steps);
+  }
+  // The snapshot of the last accepted state is written too.
+  const Csv solution = ReadCsv(dir / "solution.csv");
+  ExpectWholeRecords(dir / "solution.csv", solution);
+  ASSERT_GT(solution.records.size(), 1u);
+  EXPECT_EQ(std::stoi(solution.records[1][0]), accepted_steps);
+  std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, InterruptTest, testing::Values(SIGINT, SIGTERM),
+                         [](const testing::TestParamInfo<int>& info) {
+                           return std::string(info.param == SIGINT ? "Sigint" : "Sigterm");
+                         });
+
+// compare stops the same way, during the reference path or a replay.
+TEST(InterruptTest, CompareStopsWithStatus4AndWholeRecords) {
+  const auto dir = TempDir("compare");
+  const auto log = dir / "log.txt";
+  const pid_t pid = Start({"compare", "--problem", "arch-curved", "--formulations",
+                           "implicit-fb,nonsmooth-fb", "--steps", "100000", "--out", dir.string()},
+                          log);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(WaitForLines(pid, dir / "kinks.csv", 3)) << ReadText(log);
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  const int raw = Wait(pid);
+  ASSERT_TRUE(WIFEXITED(raw)) << raw << "\n" << ReadText(log);
+  EXPECT_EQ(WEXITSTATUS(raw), 4) << ReadText(log);
+  EXPECT_NE(ReadText(log).find("stopped by the caller"), std::string::npos) << ReadText(log);
+  for (const char* file : {"steps.csv", "iterations.csv", "kinks.csv", "runs.csv"}) {
+    ExpectWholeRecords(dir / file, ReadCsv(dir / file));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// SIGKILL cannot be handled: whatever was written is whole records (each is written by one
+// write and flushed).
+TEST(InterruptTest, KilledRunLeavesOnlyWholeRecords) {
+  const auto dir = TempDir("kill");
+  auto args = kLongRun;
+  args.insert(args.end(), {"--out", dir.string()});
+  const pid_t pid = Start(args, dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(WaitForLines(pid, dir / "steps.csv", 21)) << ReadText(dir / "log.txt");
+  // Kill while it writes: a few random moments after rows have started to flow.
+  std::this_thread::sleep_for(std::chrono::milliseconds(7));
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  const int raw = Wait(pid);
+  ASSERT_TRUE(WIFSIGNALED(raw));
+  EXPECT_EQ(WTERMSIG(raw), SIGKILL);
+  for (const char* file : {"steps.csv", "iterations.csv", "kinks.csv"}) {
+    const Csv csv = ReadCsv(dir / file);
+    ExpectWholeRecords(dir / file, csv);
+  }
+  const Csv steps = ReadCsv(dir / "steps.csv");
+  EXPECT_GE(steps.records.size(), 21u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
