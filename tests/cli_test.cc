@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -397,3 +398,53 @@ TEST(CliTest, BlockRunsTheFixedLoadSolve) {
 }
 
 }  // namespace
+
+namespace cb {
+namespace {
+
+// --save-every writes the saved states as CSV rows and as VTK files that a collection lists:
+// the apex of the two-bar truss moved by the same amount in both.
+TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_cli_vtk";
+  std::filesystem::remove_all(dir);
+  const std::string command = std::string(CONTACTBENCH_BINARY) +
+                              " run --problem two-bar --formulation implicit-fb --steps 20"
+                              " --save-every 10 --out " + dir.string() + " 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  // Steps 10 and 20, the limit point passed in step 10, and the final state.
+  std::ifstream pvd(dir / "vtk" / "two-bar.pvd");
+  ASSERT_TRUE(pvd.good());
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), {});
+  for (const char* file :
+       {"two-bar_0000.vtu", "two-bar_0001.vtu", "two-bar_0002.vtu", "two-bar_0003.vtu"}) {
+    EXPECT_NE(collection.find(file), std::string::npos) << file;
+    EXPECT_TRUE(std::filesystem::exists(dir / "vtk" / file)) << file;
+  }
+  std::ifstream vtu(dir / "vtk" / "two-bar_0002.vtu");  // step 20
+  const std::string grid((std::istreambuf_iterator<char>(vtu)), {});
+  EXPECT_NE(grid.find("NumberOfPoints=\"3\" NumberOfCells=\"2\""), std::string::npos);
+  // The apex (node 1) displacement of step 20 in the CSV, and in the .vtu's point data.
+  double uy = 0.0;
+  int rows = 0;
+  std::ifstream csv(dir / "snapshots.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "step,label,lambda,node,x,y,ux,uy");
+  while (std::getline(csv, line)) {
+    ++rows;
+    if (line.rfind("20,step,", 0) == 0 && line.find(",1,0,0.5,") != std::string::npos) {
+      uy = std::stod(line.substr(line.rfind(',') + 1));
+    }
+  }
+  EXPECT_EQ(rows, 12);  // 4 saved states x 3 nodes
+  ASSERT_LT(uy, 0.0);
+  const auto data = grid.find("Name=\"displacement\"");
+  ASSERT_NE(data, std::string::npos);
+  std::istringstream values(grid.substr(grid.find('>', data) + 1));
+  double v[9];
+  for (double& x : v) values >> x;
+  EXPECT_DOUBLE_EQ(v[4], uy);  // node 1, y component
+}
+
+}  // namespace
+}  // namespace cb

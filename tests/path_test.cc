@@ -1,6 +1,7 @@
 // The arc-length driver against closed-form paths (PROBLEMS.md verification problems), the
 // kink location of METHOD.md section 6, step cut-back and the report's P3 path.
 #include "path/path.h"
+#include "path/stability.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "problems/problem.h"
+#include "verdict/verdict.h"
 
 namespace cb {
 namespace {
@@ -19,6 +21,7 @@ class Collector final : public PathObserver {
  public:
   void OnAttempt(const StepAttempt& a) override { attempts.push_back(a); }
   void OnKink(const KinkRecord& k) override { kinks.push_back(k); }
+  void OnCriticalPoint(const CriticalPointRecord& c) override { critical.push_back(c); }
   std::vector<StepAttempt> Accepted() const {
     std::vector<StepAttempt> out;
     for (const auto& a : attempts) {
@@ -28,6 +31,7 @@ class Collector final : public PathObserver {
   }
   std::vector<StepAttempt> attempts;
   std::vector<KinkRecord> kinks;
+  std::vector<CriticalPointRecord> critical;
 };
 
 PathSummary Trace(const Problem& p, Formulation& f, int steps, Collector* c, double theta = 0.0) {
@@ -187,6 +191,135 @@ TEST(PathTest, ArchCurvedFirst300StepsAllVerifiedWithNewton) {
   for (const auto& k : c.kinks) {
     EXPECT_TRUE(k.verdict.verified) << "kink of pair " << k.pair << " at step " << k.step;
     EXPECT_TRUE(k.between) << "kink of pair " << k.pair << " at step " << k.step;
+  }
+}
+
+
+// H-distance between two states (w = 1).
+double Distance(const State& a, const State& b) {
+  return std::sqrt((a.u - b.u).squaredNorm() + (a.lambda - b.lambda) * (a.lambda - b.lambda));
+}
+
+// METHOD.md section 6 on the report's P3 path: every located kink has g = r = 0 at its pair to
+// the verdict tolerance (in the scaled variables the verdict uses), is an equilibrium, and lies
+// on the path between the two accepted states that bracket it: the two legs through it are at
+// most 1.5 times the chord (a step may cut a corner of the path, so not on the chord itself).
+TEST(PathTest, ArchCurvedKinksHaveZeroGapAndReactionAndLieBetweenTheirSteps) {
+  const Problem p = MakeProblem("arch-curved");
+  ImplicitFb f;
+  Collector c;
+  const PathSummary s = Trace(p, f, 700, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  const std::vector<StepAttempt> accepted = c.Accepted();
+  ASSERT_GE(c.kinks.size(), 10u);
+  for (const KinkRecord& k : c.kinks) {
+    SCOPED_TRACE("kink of pair " + std::to_string(k.pair) + " at step " + std::to_string(k.step));
+    ASSERT_TRUE(k.verdict.verified);
+    Vec phi;
+    p.model->Gaps(k.state.u, &phi);
+    EXPECT_LE(std::abs(-phi[k.pair] / p.scales.length), 1e-8);
+    EXPECT_LE(std::abs(k.state.r[k.pair] / p.scales.force), 1e-8);
+    const State& before = k.step >= 2 ? accepted[k.step - 2].state : ZeroState(*p.model);
+    const State& after = accepted[k.step - 1].state;
+    const double chord = Distance(before, after);
+    EXPECT_LE(Distance(before, k.state) + Distance(k.state, after), 1.5 * chord);
+  }
+}
+
+// The steep von Mises truss with its apex free sideways: the symmetric path has a bifurcation
+// point where l^3 = L w^2 (verification.cc), before its limit point. The driver locates it,
+// switches along the null vector (the sideways motion), and the path goes on, verified, on the
+// other branch, where the apex has moved sideways (on the symmetric branch it never does).
+TEST(PathTest, SteepTwoBarBifurcationIsLocatedAndTheOtherBranchIsTaken) {
+  const Problem p = MakeProblem("two-bar", {{"height", "3"}, {"apex", "free"}});
+  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const double length = std::sqrt(t.b * t.b + t.h * t.h);
+  // The closed-form bifurcation height: the root of l^3 = L w^2 below h, by bisection.
+  double lo = t.b * std::sqrt(2.0), hi = t.h;  // l^3 - L w^2 > 0 at h, < 0 at sqrt(2) b
+  for (int i = 0; i < 200; ++i) {
+    const double w = 0.5 * (lo + hi);
+    const double l = std::sqrt(t.b * t.b + w * w);
+    (l * l * l - length * w * w > 0.0 ? hi : lo) = w;
+  }
+  const double w_c = 0.5 * (lo + hi);
+  ASSERT_GT(w_c, t.LimitHeight());  // before the limit point
+
+  for (const BifurcationMode mode : {BifurcationMode::kDetect, BifurcationMode::kSwitch}) {
+    SCOPED_TRACE(ToString(mode));
+    ImplicitFb f;
+    Collector c;
+    PathOptions o;
+    o.arc_length = 0.05;
+    o.max_steps = 60;
+    o.bifurcations = mode;
+    const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+    ASSERT_EQ(s.status, Status::kConverged) << s.message;
+    ASSERT_EQ(s.bifurcations, 1);
+    const CriticalPointRecord* bifurcation = nullptr;
+    for (const auto& cp : c.critical) {
+      if (cp.kind == CriticalPointRecord::Kind::kBifurcation) bifurcation = &cp;
+    }
+    ASSERT_NE(bifurcation, nullptr);
+    ASSERT_TRUE(bifurcation->located);
+    EXPECT_TRUE(bifurcation->verdict.verified);
+    const int sideways = p.body->body().dofs().dof(1, 0);
+    const double w = t.h + bifurcation->state.u[p.control_dof];
+    EXPECT_NEAR(w, w_c, 1e-5);
+    EXPECT_NEAR(bifurcation->state.lambda, t.Lambda(w_c), 1e-5);
+    EXPECT_NEAR(bifurcation->state.u[sideways], 0.0, 1e-12);
+    // The null vector there is the sideways motion.
+    EXPECT_NEAR(std::abs(bifurcation->mode[sideways]), 1.0, 1e-6);
+
+    double max_sideways = 0.0;
+    for (const StepAttempt& a : c.Accepted()) {
+      EXPECT_TRUE(a.verdict.verified);
+      max_sideways = std::max(max_sideways, std::abs(a.state.u[sideways]));
+      if (a.branch == 0) {
+        // On the symmetric branch: x = 0 and the closed form.
+        EXPECT_NEAR(a.state.u[sideways], 0.0, 1e-12);
+        EXPECT_NEAR(a.state.lambda, t.Lambda(t.h + a.state.u[p.control_dof]), 1e-9);
+      }
+    }
+    if (mode == BifurcationMode::kDetect) {
+      EXPECT_EQ(s.branch_switches, 0);
+      EXPECT_EQ(max_sideways, 0.0);
+    } else {
+      EXPECT_EQ(s.branch_switches, 1);
+      EXPECT_TRUE(bifurcation->switched);
+      EXPECT_GT(max_sideways, 0.1);  // well off the symmetric branch
+      // The first step on the new branch leaves the bifurcation point along the null vector.
+      for (const StepAttempt& a : c.Accepted()) {
+        if (!a.branch_switch) continue;
+        EXPECT_EQ(a.branch, 1);
+        EXPECT_GT(std::abs(a.state.u[sideways] - bifurcation->state.u[sideways]), 0.5 * 0.05);
+      }
+    }
+  }
+}
+
+// The unstable modes of the two-bar truss (apex held sideways) along its snap-through: none up
+// to the limit point, one on the descending branch, none again after the snap (where the
+// closed form's lambda(w) rises again).
+TEST(PathTest, UnstableModesCountTheDescendingBranchOfTheSnapThrough) {
+  const Problem p = MakeProblem("two-bar");
+  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  ImplicitFb f;
+  Collector c;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 120;
+  o.bifurcations = BifurcationMode::kDetect;
+  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  EXPECT_EQ(s.bifurcations, 0);
+  EXPECT_EQ(s.limit_points, 2);  // the maximum and the minimum of lambda(w)
+  for (const StepAttempt& a : c.Accepted()) {
+    const double w = t.h + a.state.u[p.control_dof];
+    // d lambda / d w of the closed form; the stiffness is d lambda / d(-w) * P, negative between
+    // the limit points (|w| < LimitHeight).
+    const bool descending = std::abs(w) < t.LimitHeight();
+    if (std::abs(std::abs(w) - t.LimitHeight()) < 0.05) continue;  // too close to call
+    EXPECT_EQ(a.stability, descending ? 1 : 0) << "w = " << w;
   }
 }
 

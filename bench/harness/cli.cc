@@ -17,6 +17,7 @@
 
 #include "formulations/registry.h"
 #include "harness/records.h"
+#include "harness/snapshots.h"
 #include "io/problem_file.h"
 #include "model/complementarity_model.h"
 #include "path/path.h"
@@ -48,6 +49,7 @@ constexpr const char* kUsage = R"(usage:
                    [--solver newton|dogleg|quasi-newton] [--eta 1|2|3|4]
                    [--steps N] [--arc-length THETA] [--start warm|cold] [--tol T]
                    [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
+                   [--bifurcations off|detect|switch] [--save-every N]
                    [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
   contactbench compare (--problem NAME | --problem-file F.json) --out DIR
                    [--formulations A,B,...] [--starts warm,cold]
@@ -57,7 +59,12 @@ constexpr const char* kUsage = R"(usage:
   contactbench export (--problem NAME | --problem-file F.json) [--set KEY=VALUE ...] --out F.json
   contactbench help
 
-run writes DIR/steps.csv, iterations.csv, kinks.csv, solution.csv and contacts.csv.
+run writes DIR/steps.csv, iterations.csv, kinks.csv, critical.csv, solution.csv and
+contacts.csv (the final state), and the saved states (every --save-every N-th step, each
+critical point, the final state) in snapshots.csv, snapshot_contacts.csv and vtk/*.vtu, *.pvd.
+--bifurcations (default detect): watch the sign of the bordered stiffness's determinant and
+record limit and bifurcation points in critical.csv; switch also locates the first
+bifurcation point and continues on the other branch.
 --set changes a problem parameter (see `contactbench list` for each problem's parameters);
 --option passes a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); with
 compare, prefix it with the formulation's name.
@@ -90,6 +97,8 @@ struct RunArguments {
   double tolerance = 1e-8;
   int max_cutbacks = 6;
   bool locate_kinks = true;
+  BifurcationMode bifurcations = BifurcationMode::kDetect;
+  int save_every = 0;
   double time_limit = 0.0;
   std::map<std::string, std::string> settings;
 };
@@ -211,6 +220,13 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
       if (a.max_cutbacks < 0) throw UsageError("--max-cutbacks: must be >= 0");
     } else if (o == "--no-kinks" && !compare) {
       a.locate_kinks = false;
+    } else if (o == "--bifurcations" && !compare) {
+      if (!ParseBifurcationMode(value(i), &a.bifurcations)) {
+        throw UsageError("--bifurcations: unknown '" + value(i) + "' (valid: off, detect, switch)");
+      }
+    } else if (o == "--save-every" && !compare) {
+      a.save_every = ParseInteger(o, value(i));
+      if (a.save_every < 0) throw UsageError("--save-every: must be >= 0");
     } else if (o == "--time-limit") {
       a.time_limit = ParseNumber(o, value(i));
       if (!(a.time_limit > 0.0)) throw UsageError("--time-limit: must be positive");
@@ -283,6 +299,7 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.start = a.start;
   options.max_cutbacks = a.max_cutbacks;
   options.locate_kinks = a.locate_kinks;
+  options.bifurcations = a.bifurcations;
   options.controls.time_limit_s = a.time_limit;
   options.controls.interrupted = [] { return g_interrupted.load(); };
   std::signal(SIGINT, OnSignal);
@@ -387,12 +404,18 @@ int Run(const std::vector<std::string>& args) {
                        {problem.name, formulation->name(), formulation->solver(),
                         formulation->settings(), ToString(a.start), "run"},
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
-  const PathSummary summary = Trace(problem, *formulation, options, &recorder);
+  SnapshotWriter snapshots(a.out, problem, a.save_every);
+  ObserverTee observers({&recorder, &snapshots});
+  const PathSummary summary = Trace(problem, *formulation, options, &observers);
   WriteSnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
+  snapshots.Save(summary.final_state, summary.accepted_steps, "final");
   WriteComplementaritySnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
-  std::fprintf(stderr, "%s %s: %s (%d accepted steps, %d attempts, %d kinks) -> %s\n",
+  std::fprintf(stderr,
+               "%s %s: %s (%d accepted steps, %d attempts, %d kinks, %d limit points, "
+               "%d bifurcation points, %d branch switches) -> %s\n",
                problem.name.c_str(), formulation->name().c_str(), summary.message.c_str(),
-               summary.accepted_steps, summary.attempts, summary.kinks, a.out.c_str());
+               summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
+               summary.bifurcations, summary.branch_switches, a.out.c_str());
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   if (summary.status != Status::kConverged) return kExitFailure;
   return kExitOk;

@@ -18,7 +18,8 @@ RecordFiles::RecordFiles(const std::string& directory) : directory_(directory) {
                                "feas_res",       "step_res",       "n_contact",     "kink",
                                "attempt",        "accepted",       "reversed",      "constraint",
                                "arc_length",     "status",         "settings",      "length_scale",
-                               "force_scale",    "mode",           "message"});
+                               "force_scale",    "mode",           "unstable_modes", "branch",
+                               "branch_switch",  "message"});
   iterations_ = std::make_unique<CsvWriter>(
       directory + "/iterations.csv",
       std::vector<std::string>{"problem", "formulation", "solver", "start", "step", "attempt",
@@ -29,6 +30,11 @@ RecordFiles::RecordFiles(const std::string& directory) : directory_(directory) {
       std::vector<std::string>{"problem", "formulation", "start", "step", "pair", "lambda",
                                "control_disp", "verified", "between", "iterations", "eq_res",
                                "comp_res", "feas_res", "step_res", "time_s", "status", "message"});
+  critical_ = std::make_unique<CsvWriter>(
+      directory + "/critical.csv",
+      std::vector<std::string>{"problem", "formulation", "start", "step", "kind", "nonsmooth",
+                               "lambda", "control_disp", "located", "bisections", "verified",
+                               "eq_res", "comp_res", "switched", "message"});
 }
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
@@ -55,7 +61,7 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
       << a.verdict.feas_res << a.verdict.step_res << a.n_contact << a.kinks << a.attempt
       << a.accepted << a.reversed << ToString(a.kind) << a.arc_length << ToString(res.status)
       << label_.settings << problem_.scales.length << problem_.scales.force << label_.mode
-      << res.message;
+      << a.stability << a.branch << a.branch_switch << res.message;
   files_->steps().Write(row);
   for (const IterationRecord& it : res.history) {
     CsvWriter::Row r;
@@ -83,6 +89,15 @@ void RunRecorder::OnKink(const KinkRecord& k) {
       << k.result.counts.iterations << k.verdict.eq_res << k.verdict.comp_res << k.verdict.feas_res
       << k.verdict.step_res << k.result.time_s << ToString(k.result.status) << k.result.message;
   files_->kinks().Write(row);
+}
+
+void RunRecorder::OnCriticalPoint(const CriticalPointRecord& c) {
+  CsvWriter::Row row;
+  row << label_.problem << label_.formulation << label_.start << c.step << ToString(c.kind)
+      << c.nonsmooth << c.state.lambda << ControlDisplacement(c.state) << c.located
+      << c.bisections << c.verdict.verified << c.verdict.eq_res << c.verdict.comp_res
+      << c.switched << c.message;
+  files_->critical().Write(row);
 }
 
 void WriteSnapshot(const std::string& directory, const Problem& problem, const State& state,

@@ -25,16 +25,18 @@ struct RunLabel {
 
 class RecordFiles {
  public:
-  // Opens DIR/steps.csv, DIR/iterations.csv and DIR/kinks.csv (the directory must exist).
+  // Opens DIR/steps.csv, DIR/iterations.csv, DIR/kinks.csv and DIR/critical.csv (limit and
+  // bifurcation points; the directory must exist).
   explicit RecordFiles(const std::string& directory);
   const std::string& directory() const { return directory_; }
   CsvWriter& steps() { return *steps_; }
   CsvWriter& iterations() { return *iterations_; }
   CsvWriter& kinks() { return *kinks_; }
+  CsvWriter& critical() { return *critical_; }
 
  private:
   std::string directory_;
-  std::unique_ptr<CsvWriter> steps_, iterations_, kinks_;
+  std::unique_ptr<CsvWriter> steps_, iterations_, kinks_, critical_;
 };
 
 class RunRecorder final : public PathObserver {
@@ -44,6 +46,7 @@ class RunRecorder final : public PathObserver {
 
   void OnAttempt(const StepAttempt& attempt) override;
   void OnKink(const KinkRecord& kink) override;
+  void OnCriticalPoint(const CriticalPointRecord& point) override;
 
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }

@@ -48,6 +48,9 @@ class ElasticBody {
   virtual std::vector<std::pair<int, int>> StiffnessEntries() const = 0;
   virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const = 0;
 
+  // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral; VTK cells).
+  virtual std::vector<std::vector<int>> Cells() const = 0;
+
   int num_dofs() const { return dofs().num_dofs(); }
   // Current position X + u of a node; fixed components stay at X.
   Point Position(int node, const Vec& u) const;

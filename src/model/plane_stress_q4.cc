@@ -284,3 +284,14 @@ void AddNodalForce(const DofMap& dofs, int node, const Point& force, Vec* load) 
 }
 
 }  // namespace cb
+
+namespace cb {
+
+std::vector<std::vector<int>> PlaneStressQ4::Cells() const {
+  std::vector<std::vector<int>> cells;
+  cells.reserve(elements_.size());
+  for (const Element& e : elements_) cells.emplace_back(e.begin(), e.end());
+  return cells;
+}
+
+}  // namespace cb

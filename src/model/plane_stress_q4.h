@@ -37,6 +37,7 @@ class PlaneStressQ4 final : public ElasticBody {
   std::vector<std::pair<int, int>> StiffnessEntries() const override;
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
+  std::vector<std::vector<int>> Cells() const override;
   const std::vector<Element>& elements() const { return elements_; }
   const PlaneStressMaterial& material() const { return material_; }
   const SpMat& stiffness() const { return stiffness_; }

@@ -213,3 +213,14 @@ void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* v
 }
 
 }  // namespace cb
+
+namespace cb {
+
+std::vector<std::vector<int>> Truss::Cells() const {
+  std::vector<std::vector<int>> cells;
+  cells.reserve(members_.size());
+  for (const TrussMember& m : members_) cells.push_back({m.node_i, m.node_j});
+  return cells;
+}
+
+}  // namespace cb

@@ -35,6 +35,7 @@ class Truss final : public ElasticBody {
   std::vector<std::pair<int, int>> StiffnessEntries() const override { return stiffness_entries_; }
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
+  std::vector<std::vector<int>> Cells() const override;
   const std::vector<TrussMember>& members() const { return members_; }
   // The dofs of a member's end nodes, [node_i components, node_j components], -1 if fixed.
   struct MemberDofs {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "solvers/linear_solver.h"
+#include "path/stability.h"
 
 namespace cb {
 
@@ -47,13 +47,6 @@ Vec GapsAt(const ContactModel& model, const Vec& u) {
   return -phi;
 }
 
-// Contact status of each pair: closed when the min of (g/L, -r/R) picks the gap.
-std::vector<bool> Closed(const ContactScales& scales, const Vec& g, const Vec& r) {
-  std::vector<bool> closed(g.size());
-  for (int p = 0; p < g.size(); ++p) closed[p] = g[p] / scales.length + r[p] / scales.force < 0.0;
-  return closed;
-}
-
 double HInner(const Vec& a, double la, const Vec& b, double lb, double w) {
   return a.dot(b) + w * w * la * lb;
 }
@@ -87,49 +80,12 @@ bool TurnsBack(const StepPoint& point, const Vec& previous_du, double previous_d
 bool TangentPredictor(const ContactModel& model, const ContactScales& scales, const State& state,
                       double theta, double lambda_weight, Vec* du, double* dlambda,
                       std::string* why) {
-  const int d = model.num_dofs();
-  SpMat stiffness, curvature, gap_jacobian;
-  model.Stiffness(state.u, &stiffness);
-  model.GapCurvature(state.u, state.r, &curvature);
-  model.GapJacobian(state.u, &gap_jacobian);
-  const std::vector<bool> closed = Closed(scales, GapsAt(model, state.u), state.r);
-  std::vector<int> closed_pairs;
-  for (int p = 0; p < model.num_pairs(); ++p) {
-    if (closed[p]) closed_pairs.push_back(p);
-  }
-  const int m = static_cast<int>(closed_pairs.size());
-  std::vector<Triplet> t;
-  t.reserve(stiffness.nonZeros() + curvature.nonZeros() + 2 * gap_jacobian.nonZeros());
-  for (int j = 0; j < d; ++j) {
-    for (SpMat::InnerIterator it(stiffness, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  }
-  for (int j = 0; j < curvature.outerSize(); ++j) {
-    for (SpMat::InnerIterator it(curvature, j); it; ++it) t.emplace_back(it.row(), j, -it.value());
-  }
-  // Row index of each closed pair in the bordered system.
-  std::vector<int> border(model.num_pairs(), -1);
-  for (int k = 0; k < m; ++k) border[closed_pairs[k]] = d + k;
-  for (int j = 0; j < gap_jacobian.outerSize(); ++j) {
-    for (SpMat::InnerIterator it(gap_jacobian, j); it; ++it) {
-      const int row = border[it.row()];
-      if (row < 0) continue;
-      t.emplace_back(row, j, it.value());   // G_c
-      t.emplace_back(j, row, -it.value());  // -G_c^T
-    }
-  }
-  SpMat bordered(d + m, d + m);
-  bordered.setFromTriplets(t.begin(), t.end());
-  bordered.makeCompressed();
-  Vec rhs = Vec::Zero(d + m);
-  rhs.head(d) = model.load_pattern();
-  auto solver = MakeLinearSolver(LinearSolverNames().front());
-  Vec solution;
-  if (!solver->Factorize(bordered) || !solver->Solve(rhs, &solution) || !solution.allFinite()) {
-    *why = "tangent predictor: the stiffness bordered by the closed contacts is singular (" +
-           solver->message() + ")";
+  const BorderedStiffness stiffness(model, scales, state);
+  if (!stiffness.SolveDisplacement(model.load_pattern(), du)) {
+    *why = "tangent predictor: " +
+           (stiffness.ok() ? std::string("the tangent is not finite") : stiffness.message());
     return false;
   }
-  *du = solution.head(d);
   const double norm = std::sqrt(du->squaredNorm() + lambda_weight * lambda_weight);
   *du *= theta / norm;
   *dlambda = theta / norm;
@@ -145,8 +101,8 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
                                  const PathOptions& options, PathObserver* observer, int* found) {
   const Vec ga = GapsAt(model, a.u);
   const Vec gb = GapsAt(model, b.u);
-  const std::vector<bool> ca = Closed(scales, ga, a.r);
-  const std::vector<bool> cb = Closed(scales, gb, b.r);
+  const std::vector<bool> ca = ClosedPairs(scales, ga, a.r);
+  const std::vector<bool> cb = ClosedPairs(scales, gb, b.r);
   const Vec du_step = b.u - a.u;
   const double dl_step = b.lambda - a.lambda;
   const double w = options.lambda_weight;
@@ -194,6 +150,145 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
 
 }  // namespace
 
+namespace {
+
+double HNorm(const Vec& du, double dl, double w) { return std::sqrt(HInner(du, dl, du, dl, w)); }
+
+// Brackets, by bisection of the arc length from accepted state a towards b, the first point
+// where the number of unstable modes changes from `modes_a`; each trial is an arc-length step
+// from a, predicted along the chord b - a and judged by the verdict. Searches t in
+// (t_from, chord] and leaves in `point` the verified trial nearest the change on a's side
+// (`point->state`, whose null vector is taken), and in *t_change and *past the first verified
+// point past it.
+void LocateModeChange(const ContactModel& model, const ContactScales& scales, const State& a,
+                      int modes_a, const State& b, double t_from, Formulation& formulation,
+                      const PathOptions& options, CriticalPointRecord* point, double* t_change,
+                      int* modes_after, State* past) {
+  const double w = options.lambda_weight;
+  const Vec chord_u = b.u - a.u;
+  const double chord_l = b.lambda - a.lambda;
+  const double chord = HNorm(chord_u, chord_l, w);
+  double lo = t_from;
+  double hi = chord;
+  *modes_after = BorderedStiffness(model, scales, b).unstable_modes();
+  *past = b;
+  while (hi - lo > options.bifurcation_tolerance * chord && point->bisections < 60) {
+    const double t = 0.5 * (lo + hi);
+    StepProblem problem{&model, a, StepConstraint::ArcLength(t, w), scales};
+    StartPoint start;
+    start.kind = StartKind::kWarm;
+    start.du = chord_u * (t / chord);
+    start.dlambda = chord_l * (t / chord);
+    start.r = a.r + (t / chord) * (b.r - a.r);
+    const StepResult result = formulation.Solve(problem, start, options.controls);
+    ++point->bisections;
+    const Verdict verdict = Judge(problem, result.point, options.tolerance);
+    if (!verdict.verified) {
+      point->message = "a bisection step failed the verdict (" + result.message + ")";
+      *t_change = hi;
+      return;
+    }
+    const State trial{a.u + result.point.du, result.point.r, a.lambda + result.point.dlambda};
+    const int modes = BorderedStiffness(model, scales, trial).unstable_modes();
+    if (modes == modes_a) {
+      lo = t;
+      point->state = trial;
+      point->verdict = verdict;
+    } else {
+      hi = t;
+      *modes_after = modes;
+      *past = trial;
+    }
+  }
+  *t_change = hi;
+  point->located = true;
+}
+
+// The orientation of the path at a state, moving along (du, dlambda): the sign of the
+// determinant of the step's Jacobian bordered by the arc-length row,
+//   det [A  -f; du^T  w^2 dlambda] = det A (w^2 dlambda + du^T K^-1 f)   (K^-1: on Z),
+// with sign det A = (-1)^(unstable modes). At a limit point both factors change sign; at a
+// simple bifurcation point only det A does. So a change of the count with no change of the
+// orientation is the limit point, and a change of the orientation is a bifurcation point (the
+// classical test; it holds when the two are a hair apart, as they are on P2).
+int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
+                const Vec& du, double dlambda, double w) {
+  const BorderedStiffness stiffness(model, scales, at);
+  Vec tangent;
+  if (stiffness.unstable_modes() < 0 ||
+      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
+    return 0;
+  }
+  const double schur = w * w * dlambda + du.dot(tangent);
+  const int det_sign = stiffness.unstable_modes() % 2 == 0 ? 1 : -1;
+  return schur > 0.0 ? det_sign : (schur < 0.0 ? -det_sign : 0);
+}
+
+// The direction to leave a bifurcation point along: the null vector there, made orthogonal to
+// the tangent K^-1 f (a limit mode close by, as on P2, dominates the tangent) and signed so
+// that its largest component is positive (reproducible).
+bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
+                     Vec* mode, std::string* why) {
+  const BorderedStiffness stiffness(model, scales, at);
+  Mat basis;
+  Vec tangent;
+  if (!stiffness.NullSpace(1, 4, &basis) ||
+      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
+    *why = "no null vector at the bifurcation point: " + stiffness.message();
+    return false;
+  }
+  *mode = basis.col(0);
+  const double tt = tangent.squaredNorm();
+  if (tt > 0.0) *mode -= (mode->dot(tangent) / tt) * tangent;
+  const double norm = mode->norm();
+  if (!(norm > 0.0)) {
+    *why = "the null vector at the bifurcation point is the path's own tangent";
+    return false;
+  }
+  *mode /= norm;
+  Eigen::Index largest = 0;
+  mode->cwiseAbs().maxCoeff(&largest);
+  if ((*mode)[largest] < 0.0) *mode = -*mode;
+  return true;
+}
+
+}  // namespace
+
+const char* ToString(BifurcationMode mode) {
+  switch (mode) {
+    case BifurcationMode::kOff:
+      return "off";
+    case BifurcationMode::kDetect:
+      return "detect";
+    case BifurcationMode::kSwitch:
+      return "switch";
+  }
+  return "?";
+}
+
+bool ParseBifurcationMode(const std::string& text, BifurcationMode* mode) {
+  for (BifurcationMode m :
+       {BifurcationMode::kOff, BifurcationMode::kDetect, BifurcationMode::kSwitch}) {
+    if (text == ToString(m)) {
+      *mode = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* ToString(CriticalPointRecord::Kind kind) {
+  switch (kind) {
+    case CriticalPointRecord::Kind::kLimit:
+      return "limit";
+    case CriticalPointRecord::Kind::kBifurcation:
+      return "bifurcation";
+    case CriticalPointRecord::Kind::kStabilityChange:
+      return "stability_change";
+  }
+  return "?";
+}
+
 PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& scales,
                                const State& initial, Formulation& formulation,
                                const PathOptions& options, PathObserver* observer) {
@@ -204,6 +299,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
   State state = initial;
   const double nominal = options.arc_length;
   const double w = options.lambda_weight;
+  const bool watch_stability = options.bifurcations != BifurcationMode::kOff;
 
   // The reference direction: the tangent predictor for the first step, then the previous
   // accepted increment.
@@ -216,20 +312,35 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
   }
   double theta = nominal;
   std::any previous_backend;
+  // Stability of the current state and the load increment that led to it (for limit points).
+  int stability = watch_stability ? BorderedStiffness(model, scales, state).unstable_modes() : -1;
+  double last_dlambda = 0.0;
+  int last_kinks = 0;
+  int branch = 0;
+  // Set when a bifurcation point was located: the next step leaves it along `switch_mode`.
+  std::optional<CriticalPointRecord> pending_switch;
 
   for (int step = 1; step <= options.max_steps; ++step) {
     bool accepted = false;
     StepAttempt attempt;
+    const bool switching = pending_switch.has_value();
+    const State base = switching ? pending_switch->state : state;
     for (int cut = 0; cut <= options.max_cutbacks && !accepted; ++cut) {
-      StepProblem problem{&model, state, StepConstraint::ArcLength(theta, w), scales};
+      StepProblem problem{&model, base, StepConstraint::ArcLength(theta, w), scales};
       StartPoint start;
       start.kind = options.start;
-      // (38), (41): the previous increment, rescaled to this step's theta.
-      const double scale = theta / std::sqrt(HInner(previous_du, previous_dlambda, previous_du,
-                                                    previous_dlambda, w));
-      start.du = previous_du * scale;
-      start.dlambda = previous_dlambda * scale;
-      start.r = state.r;  // (40)
+      if (switching) {
+        // Off the bifurcation point along the null vector, at constant load: the root of (33)
+        // nearest to it is on the other branch (its tangent there is the null vector).
+        start.du = pending_switch->mode * theta;
+        start.dlambda = 0.0;
+      } else {
+        // (38), (41): the previous increment, rescaled to this step's theta.
+        const double scale = theta / HNorm(previous_du, previous_dlambda, w);
+        start.du = previous_du * scale;
+        start.dlambda = previous_dlambda * scale;
+      }
+      start.r = base.r;  // (40)
       start.previous = previous_backend;
 
       attempt = StepAttempt();
@@ -237,15 +348,22 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       attempt.attempt = cut;
       attempt.kind = ConstraintKind::kArcLength;
       attempt.arc_length = theta;
+      attempt.branch = branch + (switching ? 1 : 0);
+      attempt.branch_switch = switching;
       attempt.predicted_du = start.du;
       attempt.predicted_dlambda = start.dlambda;
       attempt.result = formulation.Solve(problem, start, options.controls);
       ++summary.attempts;
       const StepPoint& point = attempt.result.point;
       attempt.verdict = Judge(problem, point, options.tolerance);
-      attempt.reversed = TurnsBack(point, previous_du, previous_dlambda, step > 1, theta, w);
+      if (switching) {
+        // It must leave along the null vector, not return to the branch already traced.
+        attempt.reversed = std::abs(pending_switch->mode.dot(point.du)) < 0.5 * theta;
+      } else {
+        attempt.reversed = TurnsBack(point, previous_du, previous_dlambda, step > 1, theta, w);
+      }
       attempt.accepted = attempt.verdict.verified && !attempt.reversed;
-      attempt.state = {state.u + point.du, point.r, state.lambda + point.dlambda};
+      attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
       attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), point.r);
       if (attempt.result.status == Status::kStoppedByCaller) {
         if (observer != nullptr) observer->OnAttempt(attempt);
@@ -263,8 +381,16 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     if (!accepted) {
       summary.status = Status::kFailed;
       summary.message = "step " + std::to_string(step) + " failed the verdict after " +
-                        std::to_string(options.max_cutbacks) + " cut-backs of the arc length";
+                        std::to_string(options.max_cutbacks) + " cut-backs of the arc length" +
+                        (switching ? " (leaving the bifurcation point of step " +
+                                         std::to_string(pending_switch->step) + ")"
+                                   : std::string());
       return summary;
+    }
+    if (switching) {
+      ++branch;
+      ++summary.branch_switches;
+      pending_switch.reset();
     }
     // The direction to continue in: the increment just taken, or, past a kink, the increment
     // from the kink (the path's direction on the branch it has turned onto). Without this a
@@ -272,24 +398,116 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     previous_du = attempt.result.point.du;
     previous_dlambda = attempt.result.point.dlambda;
     if (options.locate_kinks) {
-      const std::optional<State> kink = LocateKinks(model, scales, state, attempt.state, step,
+      const std::optional<State> kink = LocateKinks(model, scales, base, attempt.state, step,
                                                     formulation, options, observer, &attempt.kinks);
       summary.kinks += attempt.kinks;
       if (kink) {
         const Vec du_after = attempt.state.u - kink->u;
         const double dl_after = attempt.state.lambda - kink->lambda;
-        if (std::sqrt(HInner(du_after, dl_after, du_after, dl_after, w)) > 1e-3 * theta) {
+        if (HNorm(du_after, dl_after, w) > 1e-3 * theta) {
           previous_du = du_after;
           previous_dlambda = dl_after;
         }
       }
     }
+    // Critical points between `base` and the new state.
+    std::vector<CriticalPointRecord> critical;
+    if (watch_stability) {
+      attempt.stability = BorderedStiffness(model, scales, attempt.state).unstable_modes();
+      const double dlambda = attempt.result.point.dlambda;
+      if (!switching && step > 1 && dlambda * last_dlambda < 0.0) {
+        CriticalPointRecord limit;
+        limit.step = step;
+        limit.kind = CriticalPointRecord::Kind::kLimit;
+        limit.nonsmooth = attempt.kinks + last_kinks > 0;
+        limit.state = base;
+        limit.verdict.verified = true;  // an accepted state
+        limit.message = "the load parameter turned at the accepted state before this step";
+        critical.push_back(limit);
+        ++summary.limit_points;
+      }
+      if (!switching && stability >= 0 && attempt.stability >= 0 &&
+          attempt.stability != stability) {
+        const std::vector<bool> before = ClosedPairs(scales, GapsAt(model, base.u), base.r);
+        const std::vector<bool> after =
+            ClosedPairs(scales, GapsAt(model, attempt.state.u), attempt.state.r);
+        if (before != after || attempt.kinks > 0) {
+          CriticalPointRecord point;
+          point.step = step;
+          point.kind = CriticalPointRecord::Kind::kStabilityChange;
+          point.nonsmooth = true;
+          point.state = base;
+          point.verdict.verified = true;
+          point.message = "the number of unstable modes changed with the contact status";
+          critical.push_back(point);
+        } else {
+          // Each change of the count along the step is located; where the orientation changes
+          // across it, it is a bifurcation point (else the limit point, recorded above).
+          const Vec& chord_u = attempt.result.point.du;
+          const double chord_l = attempt.result.point.dlambda;
+          double t_from = 0.0;
+          int modes = stability;
+          State from = base;
+          for (int guard = 0; guard < 8 && modes != attempt.stability; ++guard) {
+            CriticalPointRecord point;
+            point.step = step;
+            point.kind = CriticalPointRecord::Kind::kBifurcation;
+            point.state = from;
+            point.verdict.verified = true;
+            double t_change = 0.0;
+            int modes_after = attempt.stability;
+            State past;
+            LocateModeChange(model, scales, base, modes, attempt.state, t_from, formulation,
+                             options, &point, &t_change, &modes_after, &past);
+            if (!point.located) {
+              point.kind = CriticalPointRecord::Kind::kStabilityChange;
+              critical.push_back(point);
+              break;
+            }
+            const int before = Orientation(model, scales, point.state, chord_u, chord_l, w);
+            const int after = Orientation(model, scales, past, chord_u, chord_l, w);
+            t_from = t_change;
+            modes = modes_after;
+            from = past;
+            if (before == after) continue;  // the limit point
+            ++summary.bifurcations;
+            if (!BranchDirection(model, scales, point.state, &point.mode, &why)) {
+              point.message = "located; " + why;
+              critical.push_back(point);
+              continue;
+            }
+            point.message = "located";
+            if (options.bifurcations == BifurcationMode::kSwitch &&
+                summary.branch_switches < options.max_branch_switches && !pending_switch &&
+                std::none_of(critical.begin(), critical.end(),
+                             [](const CriticalPointRecord& c) { return c.switched; })) {
+              point.switched = true;  // the next step leaves along point.mode
+              point.message += "; the next step leaves along the null vector";
+            }
+            critical.push_back(point);
+          }
+        }
+      }
+    }
     if (observer != nullptr) observer->OnAttempt(attempt);
+    for (const CriticalPointRecord& point : critical) {
+      if (observer != nullptr) observer->OnCriticalPoint(point);
+      if (point.switched) pending_switch = point;
+    }
     previous_backend = attempt.result.backend_state;
+    last_dlambda = attempt.result.point.dlambda;
+    last_kinks = attempt.kinks;
+    stability = attempt.stability;
     state = attempt.state;
     summary.final_state = state;
     ++summary.accepted_steps;
     theta = std::min(nominal, 2.0 * theta);
+    if (pending_switch) {
+      // The next step starts from the bifurcation point, not from the state just accepted
+      // past it on the branch already traced.
+      stability = BorderedStiffness(model, scales, pending_switch->state).unstable_modes();
+      previous_backend = std::any();
+    }
     if (options.controls.interrupted && options.controls.interrupted()) {
       summary.status = Status::kStoppedByCaller;
       summary.message = "stopped by the caller after step " + std::to_string(step);

@@ -11,6 +11,14 @@
 
 namespace cb {
 
+// What the driver does about the stability of the path (stability.h): nothing; count the
+// unstable modes at every accepted state and record limit points and (located) bifurcation
+// points; or also switch onto the other branch at a bifurcation point along its null vector.
+enum class BifurcationMode { kOff, kDetect, kSwitch };
+const char* ToString(BifurcationMode mode);
+// "off", "detect" or "switch"; false for anything else.
+bool ParseBifurcationMode(const std::string& text, BifurcationMode* mode);
+
 struct PathOptions {
   double arc_length = 0.1;     // theta of (33)
   double lambda_weight = 1.0;  // w of ||(du, dlambda)||_H
@@ -22,6 +30,11 @@ struct PathOptions {
   // back by a factor 2 up to its nominal value.
   int max_cutbacks = 6;
   bool locate_kinks = true;  // solve (53) for each pair whose contact status changed
+  BifurcationMode bifurcations = BifurcationMode::kOff;
+  int max_branch_switches = 1;  // kSwitch: switch at the first this many bifurcation points
+  // kSwitch: the bifurcation point is bracketed by bisection of the arc length until the
+  // bracket is below this fraction of theta.
+  double bifurcation_tolerance = 1e-6;
   SolveControls controls;    // per-step time limit and interrupt hook
 
   bool IsValid(std::string* why) const;
@@ -42,6 +55,11 @@ struct StepAttempt {
   State state;        // the state the attempt reached (base + increment)
   int n_contact = 0;  // pairs in contact at `state` (CountContacts)
   int kinks = 0;      // kinks located between the previous state and this one
+  // Unstable modes at `state` (stability.h: negative eigenvalues of the stiffness on the
+  // motions that keep the closed contacts closed; 0 = stable); -1 when not computed.
+  int stability = -1;
+  int branch = 0;              // 0 on the initial branch, +1 after each branch switch
+  bool branch_switch = false;  // this step left a bifurcation point along its null vector
 };
 
 // A nonsmooth point of the path (METHOD.md section 6): where pair `pair` has g = r = 0,
@@ -55,11 +73,38 @@ struct KinkRecord {
   State state;
 };
 
+// A critical point of the path, found between accepted steps step - 1 and step:
+//  - kLimit: the load parameter turned (dlambda changed sign); `state` is the accepted state
+//    where it did; `nonsmooth` when a kink was located in one of the two steps around it
+//    (the report's point B of P2, a limit point made by a contact change);
+//  - kBifurcation: the number of unstable modes changed within a step whose contact status
+//    did not change, and the orientation of the path (the sign of the determinant of the
+//    step's Jacobian with its arc-length row) changed there too: the path crossed another
+//    branch. Located by bisection of the arc length (`state`, `verdict`); `mode` is the null
+//    vector there;
+//  - kStabilityChange: the number of unstable modes changed together with the contact status
+//    (a nonsmooth critical point), or could not be located; recorded only.
+struct CriticalPointRecord {
+  enum class Kind { kLimit, kBifurcation, kStabilityChange };
+  int step = 0;
+  Kind kind = Kind::kLimit;
+  bool nonsmooth = false;
+  State state;
+  bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance
+  int bisections = 0;
+  Verdict verdict;
+  Vec mode;                    // kBifurcation: the null vector (unit norm)
+  bool switched = false;  // the path left this point onto the other branch
+  std::string message;
+};
+const char* ToString(CriticalPointRecord::Kind kind);
+
 class PathObserver {
  public:
   virtual ~PathObserver() = default;
   virtual void OnAttempt(const StepAttempt& /*attempt*/) {}
   virtual void OnKink(const KinkRecord& /*kink*/) {}
+  virtual void OnCriticalPoint(const CriticalPointRecord& /*point*/) {}
 };
 
 struct PathSummary {
@@ -68,6 +113,9 @@ struct PathSummary {
   int accepted_steps = 0;
   int attempts = 0;
   int kinks = 0;
+  int limit_points = 0;
+  int bifurcations = 0;
+  int branch_switches = 0;
   State final_state;
 };
 

@@ -29,7 +29,15 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
   p.DeclareReal("area_step", 0.02, "area decrease from one member group to the next [m^2]", -1e6,
                 1e6);
   p.DeclareReal("youngs_modulus", 20e6, "E [kN/m^2] (20 GPa)", 0.0, 1e30, true);
-  p.DeclareReal("load", load, "load at node (a) in +x per unit lambda [kN]", -1e30, 1e30);
+  // Reconstruction (PROBLEMS.md, "load unit"): the report prints "5 lambda kN" (P2) and
+  // "lambda kN" (P3). With E = 20 GPa and kN the limit point B of P3 lies near lambda = 1.9e5,
+  // some 10^6 arc-length steps of 0.1, against the report's 1604 steps; read in MN (1000 kN)
+  // the path reaches B of P2 in about 900 steps and B of P3 in about 2150, the report's order.
+  // Only the product load x lambda matters: load = 5 (kN) gives the printed reading.
+  p.DeclareReal("load", load,
+                "load at node (a) in +x per unit lambda [kN] (reconstruction: the report's "
+                "load unit read as MN)",
+                -1e30, 1e30);
   p.DeclareReal("lower_clearance", 0.1,
                 "H2, gap from the lower centre node to the lower obstacle [m]", 0.0, 1e6, true);
   p.DeclareChoice(
@@ -40,18 +48,18 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
   p.DeclareReal("cylinder_radius", 100.0, "radius of the lower cylinder [m]", 0.0, 1e9, true);
   p.DeclareReal("arc_length", 0.1, "theta of (33), ||(du, dlambda)||_2 (du in m)", 0.0, 1e6, true);
   p.DeclareInteger("steps", steps, "arc-length steps of the default path", 1, 10000000);
-  // Gaps of the order of the clearance H2, reactions of the order of a kN.
-  DeclareScaleParameters(0.1, 1.0, &p);
+  // Gaps of the order of the clearance H2, reactions of the order of the load unit (1 MN).
+  DeclareScaleParameters(0.1, 1000.0, &p);
   return p;
 }
 
 }  // namespace
 
-Parameters ArchFlatDefaults() { return ArchDefaults(7.5, 20.0, 30, 0.33, 5.0, "flat", 600); }
+Parameters ArchFlatDefaults() { return ArchDefaults(7.5, 20.0, 30, 0.33, 5000.0, "flat", 600); }
 
 Parameters ArchCurvedDefaults() {
   // PROBLEMS.md: span 75 m read as half-span 37.5 m, which gives H1 = 2.6373 m.
-  return ArchDefaults(37.5, 5.0, 70, 0.73, 1.0, "cylinder", 1604);
+  return ArchDefaults(37.5, 5.0, 70, 0.73, 1000.0, "cylinder", 1604);
 }
 
 Problem BuildArch(const Parameters& p) {

@@ -56,12 +56,15 @@ Problem BuildBarWall(const Parameters& p) {
 }
 
 // --- two-bar (von Mises) truss ----------------------------------------------------------------
-// Supports at (-b, 0) and (b, 0), apex at (0, h), apex x fixed (so the path stays symmetric),
-// load lambda P downward at the apex. With w = h - v the apex height and l = sqrt(b^2 + w^2):
+// Supports at (-b, 0) and (b, 0), apex at (0, h), apex x fixed (so the path stays symmetric)
+// unless apex = free, load lambda P downward at the apex. With w = h - v the apex height and l = sqrt(b^2 + w^2):
 //   lambda(w) = (2 E A / P) (1/l - 1/L) w,            L = sqrt(b^2 + h^2),
 // with limit points where l^3 = b^2 L. The obstacle variant puts a floor y < floor_height under
 // the apex: once the apex touches it, w stays at floor_height and the floor carries
 // r = -(lambda - lambda(floor_height)) P (negative: compression, no adhesion).
+// With the apex free to move sideways, the symmetric path has a bifurcation point where the
+// sideways stiffness (2 E A / (L l^3)) (b^2 l + (l - L) w^2) vanishes, l^3 = L w^2; it comes
+// before the limit point when L > 3^(3/2) b / 2 (a steep truss, e.g. b = 1, h = 3).
 
 namespace {
 
@@ -74,6 +77,10 @@ Parameters TwoBarParameters(bool with_obstacle) {
   p.DeclareChoice("obstacle", with_obstacle ? "floor" : "none", "a floor under the apex",
                   {"none", "floor"});
   p.DeclareReal("floor_height", 0.1, "y of the floor's surface (below the apex)", -1e9, 1e9);
+  p.DeclareChoice("apex", "fixed",
+                  "fixed: the apex moves vertically only; free: also sideways (a bifurcation "
+                  "point on steep trusses)",
+                  {"fixed", "free"});
   p.DeclareReal("arc_length", 0.05, "theta", 0.0, 1e9, true);
   p.DeclareInteger("steps", 200, "arc-length steps", 1, 10000000);
   DeclareScaleParameters(0.1, 1.0, &p);
@@ -92,7 +99,7 @@ Problem BuildTwoBar(const Parameters& p) {
   xy << -b, 0.0, 0.0, h, b, 0.0;
   const double ea = p.Real("axial_stiffness");
   std::vector<TrussMember> members = {{0, 1, ea, 1.0}, {1, 2, ea, 1.0}};
-  std::vector<bool> fixed = {true, true, true, false, true, true};
+  std::vector<bool> fixed = {true, true, p.Choice("apex") == "fixed", false, true, true};
   auto body = std::make_shared<Truss>(xy, members, fixed);
   std::vector<std::shared_ptr<const Obstacle>> obstacles;
   std::vector<ContactPair> pairs;

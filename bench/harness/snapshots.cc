@@ -1,0 +1,161 @@
+#include "harness/snapshots.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace cb::harness {
+
+namespace {
+
+// VTK cell types of the legacy/XML formats.
+constexpr int kVtkLine = 3;
+constexpr int kVtkQuad = 9;
+
+std::vector<std::string> NodeColumns(int dim) {
+  std::vector<std::string> c = {"step", "label", "lambda", "node", "x", "y"};
+  if (dim == 3) c.push_back("z");
+  c.insert(c.end(), {"ux", "uy"});
+  if (dim == 3) c.push_back("uz");
+  return c;
+}
+
+}  // namespace
+
+SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
+    : directory_(directory), problem_(problem), every_(every) {
+  if (!problem_.body) return;
+  nodes_ = std::make_unique<CsvWriter>(directory + "/snapshots.csv",
+                                       NodeColumns(problem_.body->body().dim()));
+  contacts_ = std::make_unique<CsvWriter>(
+      directory + "/snapshot_contacts.csv",
+      std::vector<std::string>{"step", "label", "lambda", "pair", "node", "obstacle", "g", "r"});
+  std::filesystem::create_directories(directory + "/vtk");
+}
+
+void SnapshotWriter::OnAttempt(const StepAttempt& a) {
+  if (a.accepted && every_ > 0 && a.step % every_ == 0) Save(a.state, a.step, "step");
+}
+
+void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
+  if (c.kind == CriticalPointRecord::Kind::kStabilityChange) return;
+  Save(c.state, c.step, ToString(c.kind));
+}
+
+void SnapshotWriter::Save(const State& state, int step, const std::string& label) {
+  if (!problem_.body) return;
+  const BodyContactModel& model = *problem_.body;
+  const ElasticBody& body = model.body();
+  const int dim = body.dim();
+  for (int n = 0; n < body.num_nodes(); ++n) {
+    const Point x = body.reference(n);
+    const Point moved = body.Position(n, state.u);
+    CsvWriter::Row row;
+    row << step << label << state.lambda << n;
+    for (int c = 0; c < dim; ++c) row << x[c];
+    for (int c = 0; c < dim; ++c) row << moved[c] - x[c];
+    nodes_->Write(row);
+  }
+  Vec phi;
+  model.Gaps(state.u, &phi);
+  for (int p = 0; p < model.num_pairs(); ++p) {
+    CsvWriter::Row row;
+    row << step << label << state.lambda << p << model.pairs()[p].node
+        << model.pairs()[p].obstacle << -phi[p] << state.r[p];
+    contacts_->Write(row);
+  }
+  char name[64];
+  std::snprintf(name, sizeof name, "_%04d.vtu", static_cast<int>(saved_.size()));
+  const std::string file = problem_.name + name;
+  WriteVtu(directory_ + "/vtk/" + file, state, step);
+  saved_.push_back({file, step, label, state.lambda});
+  WritePvd();
+}
+
+// VTK XML unstructured grid (ASCII): reference points, the elements as cells, and as point
+// data the displacement (3 components, so ParaView's "Warp By Vector" applies) and the sum of
+// the contact reactions at each node; the load parameter and step as field data.
+void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int step) const {
+  const BodyContactModel& model = *problem_.body;
+  const ElasticBody& body = model.body();
+  const int dim = body.dim();
+  const std::vector<std::vector<int>> cells = body.Cells();
+  std::vector<double> reaction(body.num_nodes(), 0.0);
+  for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
+
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  out.precision(17);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <FieldData>\n"
+      << "      <DataArray type=\"Float64\" Name=\"lambda\" NumberOfTuples=\"1\" format=\"ascii\">"
+      << state.lambda << "</DataArray>\n"
+      << "      <DataArray type=\"Int32\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">"
+      << step << "</DataArray>\n"
+      << "    </FieldData>\n"
+      << "    <Piece NumberOfPoints=\"" << body.num_nodes() << "\" NumberOfCells=\""
+      << cells.size() << "\">\n"
+      << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int n = 0; n < body.num_nodes(); ++n) {
+    const Point x = body.reference(n);
+    out << "         ";
+    for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? x[c] : 0.0);
+    out << '\n';
+  }
+  out << "        </DataArray>\n      </Points>\n      <Cells>\n"
+      << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (const auto& cell : cells) {
+    for (int n : cell) out << ' ' << n;
+  }
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n         ";
+  int offset = 0;
+  for (const auto& cell : cells) out << ' ' << (offset += static_cast<int>(cell.size()));
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ";
+  for (const auto& cell : cells) out << ' ' << (cell.size() == 2 ? kVtkLine : kVtkQuad);
+  out << "\n        </DataArray>\n      </Cells>\n"
+      << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
+      << "        <DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (int n = 0; n < body.num_nodes(); ++n) {
+    const Point x = body.reference(n);
+    const Point moved = body.Position(n, state.u);
+    out << "         ";
+    for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? moved[c] - x[c] : 0.0);
+    out << '\n';
+  }
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"contact_reaction\" format=\"ascii\">\n";
+  for (double r : reaction) out << "          " << r << '\n';
+  out << "        </DataArray>\n      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
+      << "</VTKFile>\n";
+  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+}
+
+// The collection, one dataset per saved state in order; the "timestep" is the save index
+// (two saves may share a step: a critical point and the regular save).
+void SnapshotWriter::WritePvd() const {
+  const std::string path = directory_ + "/vtk/" + problem_.name + ".pvd";
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    if (!out) throw std::runtime_error("cannot write '" + temporary + "'");
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    for (std::size_t k = 0; k < saved_.size(); ++k) {
+      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\""
+          << saved_[k].file << "\"/>  <!-- step " << saved_[k].step << ", " << saved_[k].label
+          << ", lambda " << saved_[k].lambda << " -->\n";
+    }
+    out << "  </Collection>\n</VTKFile>\n";
+  }
+  std::filesystem::rename(temporary, path);  // atomic: never a half-written collection
+}
+
+}  // namespace cb::harness
