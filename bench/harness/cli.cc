@@ -47,7 +47,8 @@ constexpr const char* kUsage = R"(usage:
   contactbench list
   contactbench run (--problem NAME | --problem-file F.json) --formulation NAME --out DIR
                    [--solver newton|dogleg|quasi-newton] [--eta 1|2|3|4]
-                   [--steps N] [--arc-length THETA] [--start warm|cold] [--tol T]
+                   [--steps N] [--arc-length THETA] [--start warm|cold|near] [--tol T]
+                   [--near-offset DELTA]
                    [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
                    [--bifurcations off|detect|switch] [--save-every N]
                    [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
@@ -77,6 +78,9 @@ docs/problem-files.md); its --set keys are length_scale, force_scale and load or
 steps. export writes a named problem (or a problem file, normalised) as a problem file.
 Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
 4 interrupted (records kept).
+--start near (fixed-load problems, e.g. P1): the solve starts from the solution of implicit-fb
+(eta 1, Newton) perturbed by the relative offset DELTA (default 1e-2) with a fixed pattern,
+as the report's section 5.1 starts eta case 3 near the solution.
 )";
 
 struct RunArguments {
@@ -94,6 +98,8 @@ struct RunArguments {
   std::optional<int> steps;
   std::optional<double> arc_length;
   StartKind start = StartKind::kWarm;
+  bool start_near = false;   // run --start near: a warm start near a reference solution
+  double near_offset = 1e-2;
   double tolerance = 1e-8;
   int max_cutbacks = 6;
   bool locate_kinks = true;
@@ -203,7 +209,11 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
       a.arc_length = ParseNumber(o, value(i));
       if (!(*a.arc_length > 0.0)) throw UsageError("--arc-length: must be positive");
     } else if (o == "--start" && !compare) {
-      a.start = ParseStart(o, value(i));
+      a.start_near = value(i) == "near";
+      a.start = a.start_near ? StartKind::kWarm : ParseStart(o, value(i));
+    } else if (o == "--near-offset" && !compare) {
+      a.near_offset = ParseNumber(o, value(i));
+      if (!(a.near_offset >= 0.0)) throw UsageError("--near-offset: must be >= 0");
     } else if (o == "--tol") {
       a.tolerance = ParseNumber(o, value(i));
       if (!(a.tolerance > 0.0)) throw UsageError("--tol: must be positive");
@@ -309,11 +319,11 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
 
 // Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
 PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
-                  PathObserver* observer) {
+                  PathObserver* observer, const State* guess = nullptr) {
   const State initial = ZeroState(*problem.model);
   if (problem.loading == LoadingKind::kFixedLoad) {
     return SolveFixedLoad(*problem.model, problem.scales, initial, problem.load, formulation,
-                          options, observer);
+                          options, observer, guess);
   }
   return TraceArcLengthPath(*problem.model, problem.scales, initial, formulation, options,
                             observer);
@@ -323,7 +333,9 @@ int List() {
   std::cout << "problems:\n";
   for (const auto& info : ProblemRegistry()) {
     std::cout << "  " << info.name << "  " << info.description << "\n";
-    for (const auto& e : info.defaults().entries()) {
+    // Hold the defaults: a range-for over a member of a temporary would dangle (before C++23).
+    const Parameters defaults = info.defaults();
+    for (const auto& e : defaults.entries()) {
       std::cout << "      " << e.name << " = " << e.value << "   " << e.doc << "\n";
     }
   }
@@ -399,14 +411,43 @@ int Run(const std::vector<std::string>& args) {
                      problem.name + "' is traced by arc length");
   }
 
+  // --start near: the reference solution, perturbed by near_offset (relative, per entry, with
+  // the fixed pattern sin(i + 1) so that runs are reproducible).
+  std::optional<State> near;
+  if (a.start_near) {
+    if (problem.loading != LoadingKind::kFixedLoad) {
+      throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
+                       "' is traced by arc length");
+    }
+    auto reference = MakeFormulation("implicit-fb", FormulationConfig());
+    const PathSummary solved = Trace(problem, *reference, options, nullptr);
+    if (solved.status != Status::kConverged) {
+      std::fprintf(stderr, "contactbench: --start near: the reference solve failed (%s)\n",
+                   solved.message.c_str());
+      return kExitFailure;
+    }
+    near = solved.final_state;
+    for (int i = 0; i < near->u.size(); ++i) near->u[i] *= 1.0 + a.near_offset * std::sin(i + 1.0);
+    for (int i = 0; i < near->r.size(); ++i) near->r[i] *= 1.0 + a.near_offset * std::sin(i + 2.0);
+  }
   RecordFiles files(a.out);
   RunRecorder recorder(&files, problem,
                        {problem.name, formulation->name(), formulation->solver(),
-                        formulation->settings(), ToString(a.start), "run"},
+                        formulation->settings(), a.start_near ? "near" : ToString(a.start), "run"},
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
+  {
+    // The problem's parameters, reconstruction choices included, beside its records.
+    CsvWriter parameters(a.out + "/parameters.csv", {"problem", "name", "value", "doc"});
+    for (const auto& e : problem.parameters.entries()) {
+      CsvWriter::Row row;
+      row << problem.name << e.name << e.value << e.doc;
+      parameters.Write(row);
+    }
+  }
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
-  const PathSummary summary = Trace(problem, *formulation, options, &observers);
+  const PathSummary summary =
+      Trace(problem, *formulation, options, &observers, near ? &*near : nullptr);
   WriteSnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
   snapshots.Save(summary.final_state, summary.accepted_steps, "final");
   WriteComplementaritySnapshot(a.out, problem, summary.final_state, summary.accepted_steps);

@@ -32,6 +32,16 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
       directory + "/snapshot_contacts.csv",
       std::vector<std::string>{"step", "label", "lambda", "pair", "node", "obstacle", "g", "r"});
   std::filesystem::create_directories(directory + "/vtk");
+  // The elements, so that plots can draw the deformed mesh from the CSV files alone.
+  CsvWriter cells(directory + "/cells.csv", {"cell", "corner", "node"});
+  const std::vector<std::vector<int>> all = problem_.body->body().Cells();
+  for (std::size_t c = 0; c < all.size(); ++c) {
+    for (std::size_t k = 0; k < all[c].size(); ++k) {
+      CsvWriter::Row row;
+      row << static_cast<int>(c) << static_cast<int>(k) << all[c][k];
+      cells.Write(row);
+    }
+  }
 }
 
 void SnapshotWriter::OnAttempt(const StepAttempt& a) {

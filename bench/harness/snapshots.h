@@ -3,7 +3,7 @@
 // one row per node and saved state; DIR/snapshot_contacts.csv, one row per pair and saved
 // state) and as VTK files that open in ParaView (DIR/vtk/<problem>_NNNN.vtu, one per saved
 // state, collected by DIR/vtk/<problem>.pvd, rewritten after each save so that an interrupted
-// run leaves a valid collection).
+// run leaves a valid collection). DIR/cells.csv lists the elements (cell, corner, node).
 #pragma once
 
 #include <memory>

@@ -325,14 +325,17 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     StepAttempt attempt;
     const bool switching = pending_switch.has_value();
     const State base = switching ? pending_switch->state : state;
-    for (int cut = 0; cut <= options.max_cutbacks && !accepted; ++cut) {
+    const int cutbacks = switching ? 2 * options.max_cutbacks + 1 : options.max_cutbacks;
+    for (int cut = 0; cut <= cutbacks && !accepted; ++cut) {
       StepProblem problem{&model, base, StepConstraint::ArcLength(theta, w), scales};
       StartPoint start;
       start.kind = options.start;
       if (switching) {
         // Off the bifurcation point along the null vector, at constant load: the root of (33)
         // nearest to it is on the other branch (its tangent there is the null vector).
-        start.du = pending_switch->mode * theta;
+        // Both senses of the null vector are tried before theta is cut (a solver may be drawn
+        // back to the branch already traced from one side and not from the other).
+        start.du = pending_switch->mode * (cut % 2 == 0 ? theta : -theta);
         start.dlambda = 0.0;
       } else {
         // (38), (41): the previous increment, rescaled to this step's theta.
@@ -376,7 +379,22 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         break;
       }
       if (observer != nullptr) observer->OnAttempt(attempt);
-      theta *= 0.5;
+      if (!switching || cut % 2 == 1) theta *= 0.5;
+    }
+    if (!accepted && switching) {
+      // Every attempt returned to the branch already traced (or failed): say so, and go on
+      // along that branch from the state accepted past the bifurcation point.
+      CriticalPointRecord failed = *pending_switch;
+      failed.switched = false;
+      failed.message = "the branch switch failed: every attempt along the null vector " +
+                       std::string("returned to the branch already traced or failed the verdict; ") +
+                       "the path goes on along it";
+      if (observer != nullptr) observer->OnCriticalPoint(failed);
+      pending_switch.reset();
+      if (watch_stability) stability = BorderedStiffness(model, scales, state).unstable_modes();
+      theta = nominal;
+      --step;
+      continue;
     }
     if (!accepted) {
       summary.status = Status::kFailed;
@@ -521,15 +539,16 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
 
 PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scales,
                            const State& initial, double lambda, Formulation& formulation,
-                           const PathOptions& options, PathObserver* observer) {
+                           const PathOptions& options, PathObserver* observer,
+                           const State* guess) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
   StepProblem problem{&model, initial, StepConstraint::FixedLoad(lambda), scales};
   StartPoint start;
   start.kind = options.start;
-  start.du = Vec::Zero(model.num_dofs());
+  start.du = guess != nullptr ? Vec(guess->u - initial.u) : Vec(Vec::Zero(model.num_dofs()));
   start.dlambda = lambda - initial.lambda;
-  start.r = initial.r;
+  start.r = guess != nullptr ? guess->r : initial.r;
   StepAttempt attempt;
   attempt.step = 1;
   attempt.kind = ConstraintKind::kFixedLoad;

@@ -134,11 +134,14 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
                                const State& initial, Formulation& formulation,
                                const PathOptions& options, PathObserver* observer);
 
-// One fixed-load step from `initial` to lambda (P1). Warm start: du0 = 0, r0 = initial.r;
-// cold start: the formulation's fixed start.
+// One fixed-load step from `initial` to lambda (P1). Warm start: du0 = 0, r0 = initial.r, or,
+// when `guess` is given, du0 = guess->u - initial.u and r0 = guess->r (a start near a known
+// solution, as the report's section 5.1 does for eta case 3); cold start: the formulation's
+// fixed start.
 PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scales,
                            const State& initial, double lambda, Formulation& formulation,
-                           const PathOptions& options, PathObserver* observer);
+                           const PathOptions& options, PathObserver* observer,
+                           const State* guess = nullptr);
 
 // The unloaded state: u = 0, r = 0, lambda = 0.
 State ZeroState(const ContactModel& model);

@@ -55,7 +55,7 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
 
 }  // namespace
 
-Parameters ArchFlatDefaults() { return ArchDefaults(7.5, 20.0, 30, 0.33, 5000.0, "flat", 600); }
+Parameters ArchFlatDefaults() { return ArchDefaults(7.5, 20.0, 30, 0.33, 5000.0, "flat", 2000); }
 
 Parameters ArchCurvedDefaults() {
   // PROBLEMS.md: span 75 m read as half-span 37.5 m, which gives H1 = 2.6373 m.
