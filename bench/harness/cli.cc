@@ -209,8 +209,9 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
       a.arc_length = ParseNumber(o, value(i));
       if (!(*a.arc_length > 0.0)) throw UsageError("--arc-length: must be positive");
     } else if (o == "--start" && !compare) {
-      a.start_near = value(i) == "near";
-      a.start = a.start_near ? StartKind::kWarm : ParseStart(o, value(i));
+      const std::string start = value(i);
+      a.start_near = start == "near";
+      a.start = a.start_near ? StartKind::kWarm : ParseStart(o, start);
     } else if (o == "--near-offset" && !compare) {
       a.near_offset = ParseNumber(o, value(i));
       if (!(a.near_offset >= 0.0)) throw UsageError("--near-offset: must be >= 0");
@@ -231,8 +232,9 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
     } else if (o == "--no-kinks" && !compare) {
       a.locate_kinks = false;
     } else if (o == "--bifurcations" && !compare) {
-      if (!ParseBifurcationMode(value(i), &a.bifurcations)) {
-        throw UsageError("--bifurcations: unknown '" + value(i) + "' (valid: off, detect, switch)");
+      const std::string mode = value(i);
+      if (!ParseBifurcationMode(mode, &a.bifurcations)) {
+        throw UsageError("--bifurcations: unknown '" + mode + "' (valid: off, detect, switch)");
       }
     } else if (o == "--save-every" && !compare) {
       a.save_every = ParseInteger(o, value(i));
