@@ -1,7 +1,12 @@
 #!/usr/bin/env bash
-# The main job: set up (install, build), then run the suite on the report's examples and write
-# results/ (CSV records per run, and results/SUMMARY.md generated from them).
-# A run that fails keeps its records and the job goes on; the summary says what failed.
+# The main job: set up (install, build), then regenerate results/:
+#   results/block/, arch-flat/, arch-curved/   the report's three examples (issue 4): records
+#                                              (CSV), saved states (CSV, VTK)
+#   results/compare/                           the formulation comparison (scripts/run_compare.sh)
+#   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
+#   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
+# A run that fails keeps its records and the job goes on; the reports say what failed.
+# Environment: SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their old files) alone.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
@@ -12,6 +17,7 @@ cb="$build/bin/contactbench"
 status=0
 run() {  # run OUT_SUBDIR ARGS...
   local dir="$out/$1"; shift
+  rm -rf "$dir"
   echo "== contactbench run $* --out $dir" >&2
   "$cb" run "$@" --out "$dir"
   local rc=$?
@@ -19,26 +25,32 @@ run() {  # run OUT_SUBDIR ARGS...
 }
 
 # P1 block (report 5.1): the single fixed-load solve from the cold start, eta cases 1-4, with
-# the trust-region dogleg solver the report used and with Newton.
+# the trust-region dogleg solver the report used and with Newton; case 3 also from a start near
+# the solution (the implicit-fb solution perturbed by 1%), as the report did.
 for solver in dogleg newton; do
   for eta in 1 2 3 4; do
     run "block/eta$eta-$solver" --problem block --formulation implicit-fb --start cold \
         --solver "$solver" --eta "$eta"
   done
+  run "block/eta3-near-$solver" --problem block --formulation implicit-fb --start near \
+      --solver "$solver" --eta 3
 done
-# P2 arch-flat and P3 arch-curved (report 5.2, 5.3): the arc-length paths, Newton and the
-# quasi-Newton solver, kinks located.
-for problem in arch-flat arch-curved; do
-  for solver in newton quasi-newton; do
-    run "$problem/$solver" --problem "$problem" --formulation implicit-fb --solver "$solver"
-  done
+# P2 arch-flat (report 5.2): through the limit point B and the bifurcation point C, switching
+# onto the asymmetric branch D; P3 arch-curved (report 5.3): the report's 1604 steps. Newton and
+# the quasi-Newton solver; kinks located; a state saved every 100 steps and at critical points.
+for solver in newton quasi-newton; do
+  run "arch-flat/$solver" --problem arch-flat --formulation implicit-fb --solver "$solver" \
+      --bifurcations switch --save-every 100
+  run "arch-curved/$solver" --problem arch-curved --formulation implicit-fb --solver "$solver" \
+      --save-every 200
 done
 
-# Every arc-length-capable formulation on the same 200 P3 steps (replay mode), warm and cold
-# (issue 3); a step may take at most 5 s (dense SLSQP is the slow one).
-echo "== contactbench compare --problem arch-curved (200 steps, warm and cold)" >&2
-"$cb" compare --problem arch-curved --starts warm,cold --steps 200 --time-limit 5 \
-    --out "$out/compare/arch-curved" || status=3
+if [[ "${SKIP_COMPARE:-0}" != 1 ]]; then
+  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_compare.sh" || status=3
+fi
+if [[ "${SKIP_BENCH:-0}" != 1 ]]; then
+  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_bench.sh" || status=3
+fi
 
-/usr/bin/python3 "$here/results/summarize.py" "$out" > "$out/SUMMARY.md" && echo "wrote $out/SUMMARY.md" >&2
+/usr/bin/python3 "$here/results/plot.py" "$out" || status=3
 exit $status

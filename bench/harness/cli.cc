@@ -445,6 +445,13 @@ int Run(const std::vector<std::string>& args) {
       row << problem.name << e.name << e.value << e.doc;
       parameters.Write(row);
     }
+    CsvWriter::Row dofs, pairs;
+    dofs << problem.name << "num_dofs" << std::to_string(problem.model->num_dofs())
+         << "d, displacement unknowns (model size)";
+    pairs << problem.name << "num_pairs" << std::to_string(problem.model->num_pairs())
+          << "nc, contact pairs (model size)";
+    parameters.Write(dofs);
+    parameters.Write(pairs);
   }
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
