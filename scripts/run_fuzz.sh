@@ -44,7 +44,7 @@ for target in problem_file gmsh; do
   echo "run_fuzz: $target for ${seconds}s (seeds: $(ls "$seeds" | wc -l) files)" >&2
   # -timeout: one input slower than 10 s is a hang; -rss_limit_mb and -malloc_limit_mb: an
   # input that makes a reader allocate 2 GB (a size field trusted before the data) is a finding.
-  if ! "$build/fuzz/${target}_fuzzer" -max_total_time="$seconds" -timeout=10 \
+  if ! "$build/bin/${target}_fuzzer" -max_total_time="$seconds" -timeout=10 \
       -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=16384 -print_final_stats=1 \
       -dict="$here/fuzz/$target.dict" -artifact_prefix="$build/artifacts/$target-" \
       "$work" "$seeds" > "$build/$target.log" 2>&1; then

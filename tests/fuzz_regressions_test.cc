@@ -44,6 +44,19 @@ TEST(FuzzRegressionsTest, KeptCrashInputsAreRefusedOrRead) {
   RecordProperty("inputs", static_cast<int>(files.size()));
 }
 
+// gmsh_fuzzer: a $Nodes header announcing 1e8 nodes sized a 2.4 GB matrix before any node was
+// read. The count is now refused when the file cannot hold that many nodes.
+TEST(FuzzRegressionsTest, NodeCountBeyondTheFileIsRefused) {
+  const std::string text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 100000000 1 1\n";
+  try {
+    io::ParseGmsh(text, "big.msh");
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the file can hold"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(FuzzRegressionsTest, SeedCorpusAndExamplesAreRefusedOrRead) {
   auto files = FilesUnder(kRoot / "fuzz" / "corpus");
   const auto examples = FilesUnder(kRoot / "examples");
