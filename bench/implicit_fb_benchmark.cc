@@ -315,11 +315,13 @@ void RegisterAll() {
     }
   }
   for (const std::string solver : {"cholmod", "klu"}) {
-    benchmark::RegisterBenchmark(("BM_IterationOverFactorizationBlock/" + solver).c_str(),
-                                 IterationOverFactorizationBlock, solver)
-        ->Arg(50)
-        ->Arg(200)
-        ->Unit(benchmark::kMillisecond);
+    // n = 200 with klu would repeat 15 LU factorisations of 2 s each: the LU comparator is
+    // measured by the cholmod case anyway.
+    auto* block = benchmark::RegisterBenchmark(
+        ("BM_IterationOverFactorizationBlock/" + solver).c_str(), IterationOverFactorizationBlock,
+        solver);
+    block->Arg(50)->Unit(benchmark::kMillisecond);
+    if (solver == "cholmod") block->Arg(200);
     benchmark::RegisterBenchmark(("BM_IterationOverFactorizationArchCurved/" + solver).c_str(),
                                  IterationOverFactorizationArchCurved, solver)
         ->Arg(100)

@@ -422,6 +422,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       s_cc_.noalias() = l_cc_.triangularView<Eigen::Lower>() * l_cc_.transpose();
       s_cc_.diagonal() -= d0_;
       schur_ok_ = true;
+      ++schur_generation_;
     }
     if (!schur_ok_) return false;
     m_cc_ = s_cc_;
@@ -571,7 +572,38 @@ class CondensedCholeskySolver final : public LinearSolver {
         }
       }
     }
-    if (m_ > 0) {
+    if (m_ > 0 && schur_active_) {
+      // Kc = Lt Dt Lt^T (Lt = [L_ii 0; L_ci I] permuted, Dt = diag(I, M)): then
+      // C^T Kc^-1 B = (Lt^-1 C)^T Dt^-1 (Lt^-1 B), forward halves only. The forward solve of
+      // U1 (the load column) is kept while the big factor is; the parts on the contact dofs
+      // need none (Lt^-1 [0; v_c] = [0; v_c]).
+      Mat u1 = Mat::Zero(d_, m_), v = Mat::Zero(d_, m_);
+      for (const auto& t : u1_) u1(t.b, t.a) += val[t.src];
+      for (const auto& t : v_) v(t.b, t.a) += val[t.src];
+      if (!(u1_generation_ == schur_generation_ && u1 == u1_cached_)) {
+        u1_cached_ = u1;
+        if (!Forward(u1, &fwd_u1_)) return false;
+        u1_generation_ = schur_generation_;
+      }
+      fwd_b_ = fwd_u1_;
+      if (v.isZero(0.0)) {
+        fwd_c_.setZero(d_, m_);
+      } else if (!Forward(v, &fwd_c_)) {
+        return false;
+      }
+      const int ni = d_ - static_cast<int>(c_dofs_.size());
+      for (std::size_t k = 0; k < c_dofs_.size(); ++k) {
+        const int dof = c_dofs_[k];
+        fwd_b_.row(ni + k) += border_b_.row(dof) - u1.row(dof);
+        fwd_c_.row(ni + k) += border_c_.row(dof) - v.row(dof);
+      }
+      dfwd_b_ = fwd_b_;
+      ApplyDinv(&dfwd_b_);
+      const Mat schur = wc - fwd_c_.transpose() * dfwd_b_;
+      if (!schur.allFinite()) return false;
+      schur_lu_.compute(schur);
+      if (schur_lu_.rank() < m_) return false;
+    } else if (m_ > 0) {
       if (!CholmodSolve(border_b_, &border_z_)) return false;
       const Mat schur = wc - border_c_.transpose() * border_z_;
       if (!schur.allFinite()) return false;
@@ -622,6 +654,53 @@ class CondensedCholeskySolver final : public LinearSolver {
     std::memcpy(x, x2_->x, size);
     return true;
   }
+  // One CHOLMOD solve phase (sys) of the contact-block factor on cols columns.
+  bool Phase(int sys, const double* in, int cols, cholmod_dense** out) {
+    cholmod_dense rhs{};
+    rhs.nrow = static_cast<std::size_t>(d_);
+    rhs.ncol = static_cast<std::size_t>(cols);
+    rhs.nzmax = rhs.nrow * rhs.ncol;
+    rhs.d = rhs.nrow;
+    rhs.x = const_cast<double*>(in);
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    return cholmod_solve2(sys, schur_factor_, &rhs, nullptr, out, nullptr, &y_, &e_work_,
+                          &common_) != 0;
+  }
+  // Lt^-1 P b (permuted order): P, L^-1, then y_c -> L_cc y_c.
+  bool Forward(const Mat& b, Mat* out) {
+    if (!Phase(CHOLMOD_P, b.data(), static_cast<int>(b.cols()), &x1_)) return false;
+    if (!Phase(CHOLMOD_L, static_cast<const double*>(x1_->x), static_cast<int>(b.cols()), &x2_)) {
+      return false;
+    }
+    out->resize(d_, b.cols());
+    std::memcpy(out->data(), x2_->x, sizeof(double) * out->size());
+    const int nc_dofs = static_cast<int>(c_dofs_.size());
+    auto tail = out->bottomRows(nc_dofs);
+    tail = (l_cc_.triangularView<Eigen::Lower>() * tail).eval();
+    return true;
+  }
+  // Dt^-1 on a permuted block: M^-1 on the contact part.
+  void ApplyDinv(Mat* v) const {
+    const int nc_dofs = static_cast<int>(c_dofs_.size());
+    Mat tail = v->bottomRows(nc_dofs);
+    m_llt_.solveInPlace(tail);
+    v->bottomRows(nc_dofs) = tail;
+  }
+  // P^T Lt^-T w: y_c -> L_cc^T y_c, L^-T, P^T.
+  bool Backward(Mat w, Mat* out) {
+    const int nc_dofs = static_cast<int>(c_dofs_.size());
+    auto tail = w.bottomRows(nc_dofs);
+    tail = (l_cc_.transpose().triangularView<Eigen::Upper>() * tail).eval();
+    if (!Phase(CHOLMOD_Lt, w.data(), static_cast<int>(w.cols()), &x1_)) return false;
+    if (!Phase(CHOLMOD_Pt, static_cast<const double*>(x1_->x), static_cast<int>(w.cols()), &x2_)) {
+      return false;
+    }
+    out->resize(d_, w.cols());
+    std::memcpy(out->data(), x2_->x, sizeof(double) * out->size());
+    return true;
+  }
+
   bool CholmodSolve(const Mat& b, Mat* x) {
     x->resize(b.rows(), b.cols());
     return KcSolve(b.data(), static_cast<int>(b.cols()), x->data());
@@ -644,9 +723,29 @@ class CondensedCholeskySolver final : public LinearSolver {
         for (int s = g_start_[p]; s < g_start_[p + 1]; ++s) h1_[g_col_[s]] -= val[h_src_[s]] * t;
       }
     }
-    if (!CholmodSolve(h1_, &z_)) return false;
     x->resize(b.size());
-    if (m_ > 0) {
+    if (schur_active_) {
+      // f = Lt^-1 h1, y from the Schur complement, v = Kc^-1 (h1 - B y) = Lt^-T Dt^-1 (f - Fb y):
+      // one forward and one backward solve.
+      if (!Forward(h1_, &fwd_h_)) return false;
+      ApplyDinv(&fwd_h_);
+      if (m_ > 0) {
+        Vec h4 = b.tail(m_);
+        for (int p = 0; p < nc_; ++p) {
+          const double b2e = b[r2 + p] / e_[p];
+          for (int k = 0; k < m_; ++k) h4[k] -= vg_dense_(p, k) * b2e + vr_dense_(p, k) * t_[p];
+        }
+        h4.noalias() -= fwd_c_.transpose() * fwd_h_.col(0);
+        const Vec y = schur_lu_.solve(h4);
+        fwd_h_.col(0).noalias() -= dfwd_b_ * y;
+        x->tail(m_) = y;
+      }
+      if (!Backward(fwd_h_, &zmat_)) return false;
+      z_ = zmat_.col(0);
+    } else if (!CholmodSolve(h1_, &z_)) {
+      return false;
+    }
+    if (m_ > 0 && !schur_active_) {
       Vec h4 = b.tail(m_);
       for (int p = 0; p < nc_; ++p) {
         const double b2e = b[r2 + p] / e_[p];
@@ -764,6 +863,9 @@ class CondensedCholeskySolver final : public LinearSolver {
   Vec d0_, work_c_;
   Mat l_cc_, s_cc_, m_cc_;
   Eigen::LLT<Mat> m_llt_;
+  int schur_generation_ = 0;  // counts factorisations of the big contact-block factor
+  int u1_generation_ = -1;    // the generation fwd_u1_ belongs to
+  Mat u1_cached_, fwd_u1_, fwd_b_, fwd_c_, dfwd_b_, fwd_h_, zmat_;
 
   // Numeric data of the last factorisation.
   std::vector<double> wpair_, ae_, e_, bt_;
