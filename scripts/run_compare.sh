@@ -30,13 +30,15 @@
 # set over 25 minutes.
 # Usage: scripts/run_compare.sh [SET ...]   (default: all five sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
-# PREFIX_STEPS (50), SKIP_SETUP=1 to use an existing build without running setup.sh.
+# PREFIX_STEPS (50), FULL_STEPS (the problems' own), SKIP_SETUP=1 to use an existing build without running setup.sh.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
 out="${RESULTS_DIR:-$here/results}/compare"
 time_limit="${TIME_LIMIT:-5}"
 prefix_steps="${PREFIX_STEPS:-50}"
+# FULL_STEPS: a documented prefix of the full paths instead (empty: each problem's own steps).
+full_steps=(); [[ -n "${FULL_STEPS:-}" ]] && full_steps=(--steps "$FULL_STEPS")
 if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit 1; fi
 cb="$build/bin/contactbench"
 
@@ -64,7 +66,8 @@ sets=("$@")
 for set in "${sets[@]}"; do
   case "$set" in
     arch-flat|arch-curved)
-      compare "$set" --problem "$set" --formulations "$without_slsqp" --starts warm,cold ;;
+      compare "$set" --problem "$set" --formulations "$without_slsqp" --starts warm,cold \
+          "${full_steps[@]}" ;;
     arch-flat-prefix|arch-curved-prefix)
       compare "$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \
           --steps "$prefix_steps" ;;
