@@ -5,25 +5,14 @@
 # timeout or out-of-memory fails the job; the input is left in BUILD_DIR/artifacts/ -- minimise
 # it (TARGET -minimize_crash=1 -runs=10000 FILE), fix the reader, and keep it in
 # fuzz/regressions/ (tests/fuzz_regressions_test.cc runs the readers on every file there).
-# Usage: scripts/run_fuzz.sh [BUILD_DIR]   (default build-fuzz)
+# Usage: scripts/run_fuzz.sh [BUILD_DIR]   (default build-asan)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${1:-$here/build-fuzz}"
+build="${1:-$here/build-asan}"
 seconds="${FUZZ_SECONDS:-30}"
 
-"$here/scripts/install_packages.sh" cmake ninja-build pkg-config clang libclang-rt-14-dev \
-  libeigen3-dev nlohmann-json3-dev libsuitesparse-dev
-
-# The library is instrumented for coverage (fuzzer-no-link) and the sanitizers; the targets add
-# libFuzzer's main. Debug at -O1 keeps Eigen's assertions on (an eigen_assert is a finding).
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined"
-flags+=" -fno-omit-frame-pointer"
-cmake -S "$here" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DCMAKE_CXX_FLAGS="$flags" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-  -DCONTACTBENCH_FUZZ=ON -DBUILD_TESTING=OFF -DBUILD_BENCHMARKS=OFF \
-  -DCONTACTBENCH_WITH_IPOPT=OFF -DCONTACTBENCH_WITH_NLOPT=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target problem_file_fuzzer gmsh_fuzzer
+# The instrumented build shared with scripts/check_sanitizers.sh (nothing to do when that ran).
+"$here/scripts/sanitizer_build.sh" "$build" problem_file_fuzzer gmsh_fuzzer
 
 export ASAN_OPTIONS="detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

@@ -557,7 +557,7 @@ struct MpccOptions {
 
 class IpoptMpcc final : public Formulation {
  public:
-  IpoptMpcc(IpoptCommonOptions common, MpccOptions options)
+  IpoptMpcc(IpoptCommonOptions common, const MpccOptions& options)
       : common_(std::move(common)), options_(options) {
     common_.Check(name());
     auto bad = [&](const std::string& why) {

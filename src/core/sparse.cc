@@ -40,8 +40,10 @@ void ScatterPattern::Reset(SpMat* m) const {
       m->nonZeros() == pattern_.nonZeros() && m->isCompressed() &&
       std::memcmp(pattern_.outerIndexPtr(), m->outerIndexPtr(),
                   sizeof(int) * (pattern_.outerSize() + 1)) == 0 &&
-      std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
-                  sizeof(int) * pattern_.nonZeros()) == 0;
+      // (An empty pattern has no index array: memcmp of a null pointer is undefined even
+      // for zero bytes; UBSan.)
+      (pattern_.nonZeros() == 0 || std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
+                                               sizeof(int) * pattern_.nonZeros()) == 0);
   if (!same) *m = pattern_;
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
 }

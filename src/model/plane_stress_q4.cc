@@ -76,7 +76,7 @@ bool ElementStiffness(const Eigen::Matrix<double, 4, 2>& xy, const Eigen::Matrix
 }  // namespace
 
 PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
-                             PlaneStressMaterial material, std::vector<bool> fixed)
+                             const PlaneStressMaterial& material, const std::vector<bool>& fixed)
     : coordinates_(std::move(coordinates)), elements_(std::move(elements)), material_(material) {
   if (coordinates_.cols() != 2) {
     throw std::invalid_argument("PlaneStressQ4: coordinates have " +

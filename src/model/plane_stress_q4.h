@@ -22,8 +22,8 @@ class PlaneStressQ4 final : public ElasticBody {
   // `coordinates`: num_nodes x 2. Throws std::invalid_argument for unknown nodes, an element
   // with non-positive Jacobian at a Gauss point (zero area or clockwise), E <= 0,
   // thickness <= 0 or nu outside (-1, 0.5).
-  PlaneStressQ4(Mat coordinates, std::vector<Element> elements, PlaneStressMaterial material,
-                std::vector<bool> fixed = {});
+  PlaneStressQ4(Mat coordinates, std::vector<Element> elements, const PlaneStressMaterial& material,
+                const std::vector<bool>& fixed = {});
 
   int dim() const override { return 2; }
   int num_nodes() const override { return static_cast<int>(coordinates_.rows()); }

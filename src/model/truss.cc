@@ -60,7 +60,7 @@ Truss::Kinematics Truss::MemberKinematics(std::size_t member, const Vec& u) cons
   return k;
 }
 
-Truss::Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool> fixed)
+Truss::Truss(Mat coordinates, std::vector<TrussMember> members, const std::vector<bool>& fixed)
     : coordinates_(std::move(coordinates)), members_(std::move(members)) {
   if (coordinates_.cols() != 2 && coordinates_.cols() != 3) {
     throw std::invalid_argument("Truss: coordinates have " + std::to_string(coordinates_.cols()) +

@@ -22,7 +22,7 @@ class Truss final : public ElasticBody {
   // `coordinates`: one row per node, dim() = 2 or 3 columns. `fixed[n * dim + c]` marks
   // supported components (size num_nodes * dim, or empty for none). Throws
   // std::invalid_argument for unknown nodes, zero-length members, E <= 0 or A <= 0.
-  Truss(Mat coordinates, std::vector<TrussMember> members, std::vector<bool> fixed = {});
+  Truss(Mat coordinates, std::vector<TrussMember> members, const std::vector<bool>& fixed = {});
 
   int dim() const override { return static_cast<int>(coordinates_.cols()); }
   int num_nodes() const override { return static_cast<int>(coordinates_.rows()); }
