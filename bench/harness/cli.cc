@@ -209,7 +209,7 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
       a.arc_length = ParseNumber(o, value(i));
       if (!(*a.arc_length > 0.0)) throw UsageError("--arc-length: must be positive");
     } else if (o == "--start" && !compare) {
-      const std::string start = value(i);
+      const std::string& start = value(i);
       a.start_near = start == "near";
       a.start = a.start_near ? StartKind::kWarm : ParseStart(o, start);
     } else if (o == "--near-offset" && !compare) {
@@ -232,7 +232,7 @@ RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) 
     } else if (o == "--no-kinks" && !compare) {
       a.locate_kinks = false;
     } else if (o == "--bifurcations" && !compare) {
-      const std::string mode = value(i);
+      const std::string& mode = value(i);
       if (!ParseBifurcationMode(mode, &a.bifurcations)) {
         throw UsageError("--bifurcations: unknown '" + mode + "' (valid: off, detect, switch)");
       }

@@ -46,7 +46,7 @@ class RunRecorder final : public PathObserver {
 
   void OnAttempt(const StepAttempt& attempt) override;
   void OnKink(const KinkRecord& kink) override;
-  void OnCriticalPoint(const CriticalPointRecord& point) override;
+  void OnCriticalPoint(const CriticalPointRecord& c) override;
 
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }

@@ -23,7 +23,7 @@ class SnapshotWriter final : public PathObserver {
   SnapshotWriter(const std::string& directory, const Problem& problem, int every);
 
   void OnAttempt(const StepAttempt& attempt) override;
-  void OnCriticalPoint(const CriticalPointRecord& point) override;
+  void OnCriticalPoint(const CriticalPointRecord& c) override;
 
   // Saves `state` with a label ("step", "limit", "bifurcation", "final", ...).
   void Save(const State& state, int step, const std::string& label);

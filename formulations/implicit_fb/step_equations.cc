@@ -286,7 +286,7 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
     if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) return false;
     return true;
   };
-  const SolverSummary summary = solver.Solve(system, x, observe);
+  SolverSummary summary = solver.Solve(system, x, observe);  // not const: returned by move
 
   result->status = summary.status;
   result->message = summary.message;

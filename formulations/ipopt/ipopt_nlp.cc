@@ -409,11 +409,9 @@ bool MpccNlp::JacobianValues(const Vec& x, Vec* values) {
         v[k++] = 2.0 * c.lambda_weight * c.lambda_weight * x[ix_dlambda()] / t2;
         break;
       }
-      case ConstraintKind::kFixedLoad:
+      case ConstraintKind::kFixedLoad:     // dlambda - target
+      case ConstraintKind::kDisplacement:  // (u_j - target) / L with u_j = u^k_j + L x_j
         v[k++] = 1.0;
-        break;
-      case ConstraintKind::kDisplacement:
-        v[k++] = 1.0;  // (u_j - target) / L with u_j = u^k_j + L x_j
         break;
       case ConstraintKind::kKink:
         break;

@@ -124,7 +124,7 @@ class MpccNlp final : public IpoptNlp {
 
  private:
   bool Evaluate(const Vec& x);  // u, stiffness, curvature (at r = R r^), gap Jacobian
-  bool ThirdOrderTerm(const Vec& x, const Vec& y, Vec* lower);  // see the class comment
+  bool ThirdOrderTerm(const Vec& x, const Vec& y, Vec* joint_values);  // see the class comment
 
   const StepProblem& step_;
   MpccReformulation reformulation_;

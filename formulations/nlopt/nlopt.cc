@@ -642,7 +642,7 @@ void MpccEqualities(unsigned m, double* values, unsigned n, const double* z, dou
 
 class NloptMpcc final : public Formulation {
  public:
-  explicit NloptMpcc(NloptMpccOptions options) : options_(std::move(options)) {
+  explicit NloptMpcc(const NloptMpccOptions& options) : options_(options) {
     Check("nlopt-mpcc", options_);
   }
   std::string name() const override { return "nlopt-mpcc"; }

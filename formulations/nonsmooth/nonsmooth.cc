@@ -160,6 +160,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
       step.model->GapJacobian(u0, &gap_jacobian);
       const int k = static_cast<int>(closed.size());
       std::vector<Triplet> pick;
+      pick.reserve(k);
       for (int j = 0; j < k; ++j) pick.emplace_back(j, closed[j], 1.0);
       SpMat select(k, l.nc);
       select.setFromTriplets(pick.begin(), pick.end());

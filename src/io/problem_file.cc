@@ -127,7 +127,7 @@ NodeTable ReadNodes(const JsonNode& nodes, int dim) {
 
 int ParseDirection(const JsonNode& d, int dim) {
   const std::string s = d.String();
-  for (int c = 0; c < dim; ++c) {
+  for (int c = 0; c < dim && c < 3; ++c) {  // (dim is 2 or 3; the bound is for the reader)
     if (s == kDirectionNames[c]) return c;
   }
   d.Fail("unknown direction \"" + s + "\" (valid: " + (dim == 2 ? "x, y" : "x, y, z") + ")");
@@ -440,8 +440,9 @@ void ReadControl(const BodyInput& in, const DofMap& dofs, Problem* problem) {
 }
 
 // The fields every body problem shares, after the body is built.
-Problem FinishBody(BodyInput& in, std::shared_ptr<const ElasticBody> body, const Vec& nodal_load,
-                   const std::string& file, const std::map<std::string, std::string>& settings) {
+Problem FinishBody(BodyInput& in, const std::shared_ptr<const ElasticBody>& body,
+                   const Vec& nodal_load, const std::string& file,
+                   const std::map<std::string, std::string>& settings) {
   const JsonNode& root = in.root();
   const Obstacles obstacles = ReadObstacles(root, in.dim());
   const std::vector<ContactPair> pairs = in.ReadPairs(obstacles);

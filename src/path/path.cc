@@ -369,6 +369,10 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
       attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), point.r);
       if (attempt.result.status == Status::kStoppedByCaller) {
+        // An interrupted solve is not an accepted step, even when the point it stopped at
+        // happens to pass the verdict: the path stops before the step (the records and the
+        // summary's accepted_steps agree; tests/interrupt_test.cc).
+        attempt.accepted = false;
         if (observer != nullptr) observer->OnAttempt(attempt);
         summary.status = Status::kStoppedByCaller;
         summary.message = "stopped by the caller at step " + std::to_string(step);
