@@ -320,17 +320,28 @@ def _reconstruction(run, lines):
     lines.append("")
 
 
-def p2(results_dir, lines):
-    runs = {s: _run(results_dir, "arch-flat", s) for s in ("newton", "quasi-newton")}
+def _path_runs(results_dir, problem, heading, lines):
+    """The Newton and quasi-Newton runs of an arc-length problem, the one the tables describe
+    (Newton when present), and its located kinks; None when there are no records."""
+    runs = {s: _run(results_dir, problem, s) for s in ("newton", "quasi-newton")}
     runs = {s: r for s, r in runs.items() if r is not None and r["steps"] is not None}
-    lines += ["## P2 `arch-flat`: large deformation, two flat obstacles (report 5.2)", ""]
+    lines += [heading, ""]
     if not runs:
-        lines += ["No records in results/arch-flat/.", ""]
-        return
+        lines += ["No records in results/%s/." % problem, ""]
+        return None
     r = runs.get("newton") or next(iter(runs.values()))
-    acc = _accepted(r)
     k = r["kinks"]
     kinks = int(((k["verified"] == 1) & (k["between"] == 1)).sum()) if k is not None else 0
+    return runs, r, kinks
+
+
+def p2(results_dir, lines):
+    found = _path_runs(results_dir, "arch-flat",
+                       "## P2 `arch-flat`: large deformation, two flat obstacles (report 5.2)", lines)
+    if found is None:
+        return
+    runs, r, kinks = found
+    acc = _accepted(r)
     limits = _critical(r, "limit")
     bif = _critical(r, "bifurcation")
     switched = bif[bif["switched"] == 1] if bif is not None else None
@@ -389,16 +400,12 @@ def p2(results_dir, lines):
 
 
 def p3(results_dir, lines):
-    runs = {s: _run(results_dir, "arch-curved", s) for s in ("newton", "quasi-newton")}
-    runs = {s: r for s, r in runs.items() if r is not None and r["steps"] is not None}
-    lines += ["## P3 `arch-curved`: flat and curved obstacles (report 5.3)", ""]
-    if not runs:
-        lines += ["No records in results/arch-curved/.", ""]
+    found = _path_runs(results_dir, "arch-curved",
+                       "## P3 `arch-curved`: flat and curved obstacles (report 5.3)", lines)
+    if found is None:
         return
-    r = runs.get("newton") or next(iter(runs.values()))
+    runs, r, kinks = found
     acc = _accepted(r)
-    k = r["kinks"]
-    kinks = int(((k["verified"] == 1) & (k["between"] == 1)).sum()) if k is not None else 0
     limits = _critical(r, "limit")
     nonsmooth = limits[limits["nonsmooth"] == 1] if limits is not None else None
     b = nonsmooth.iloc[0] if nonsmooth is not None and len(nonsmooth) else None

@@ -154,6 +154,10 @@ namespace {
 
 double HNorm(const Vec& du, double dl, double w) { return std::sqrt(HInner(du, dl, du, dl, w)); }
 
+int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
+  return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
+}
+
 // Brackets, by bisection of the arc length from accepted state a towards b, the first point
 // where the number of unstable modes changes from `modes_a`; each trial is an arc-length step
 // from a, predicted along the chord b - a and judged by the verdict. Searches t in
@@ -170,7 +174,7 @@ void LocateModeChange(const ContactModel& model, const ContactScales& scales, co
   const double chord = HNorm(chord_u, chord_l, w);
   double lo = t_from;
   double hi = chord;
-  *modes_after = BorderedStiffness(model, scales, b).unstable_modes();
+  *modes_after = UnstableModes(model, scales, b);
   *past = b;
   while (hi - lo > options.bifurcation_tolerance * chord && point->bisections < 60) {
     const double t = 0.5 * (lo + hi);
@@ -189,7 +193,7 @@ void LocateModeChange(const ContactModel& model, const ContactScales& scales, co
       return;
     }
     const State trial{a.u + result.point.du, result.point.r, a.lambda + result.point.dlambda};
-    const int modes = BorderedStiffness(model, scales, trial).unstable_modes();
+    const int modes = UnstableModes(model, scales, trial);
     if (modes == modes_a) {
       lo = t;
       point->state = trial;
@@ -313,7 +317,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
   double theta = nominal;
   std::any previous_backend;
   // Stability of the current state and the load increment that led to it (for limit points).
-  int stability = watch_stability ? BorderedStiffness(model, scales, state).unstable_modes() : -1;
+  int stability = watch_stability ? UnstableModes(model, scales, state) : -1;
   double last_dlambda = 0.0;
   int last_kinks = 0;
   int branch = 0;
@@ -395,7 +399,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
                        "the path goes on along it";
       if (observer != nullptr) observer->OnCriticalPoint(failed);
       pending_switch.reset();
-      if (watch_stability) stability = BorderedStiffness(model, scales, state).unstable_modes();
+      if (watch_stability) stability = UnstableModes(model, scales, state);
       theta = nominal;
       --step;
       continue;
@@ -435,7 +439,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     // Critical points between `base` and the new state.
     std::vector<CriticalPointRecord> critical;
     if (watch_stability) {
-      attempt.stability = BorderedStiffness(model, scales, attempt.state).unstable_modes();
+      attempt.stability = UnstableModes(model, scales, attempt.state);
       const double dlambda = attempt.result.point.dlambda;
       if (!switching && step > 1 && dlambda * last_dlambda < 0.0) {
         CriticalPointRecord limit;
@@ -527,7 +531,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     if (pending_switch) {
       // The next step starts from the bifurcation point, not from the state just accepted
       // past it on the branch already traced.
-      stability = BorderedStiffness(model, scales, pending_switch->state).unstable_modes();
+      stability = UnstableModes(model, scales, pending_switch->state);
       previous_backend = std::any();
     }
     if (options.controls.interrupted && options.controls.interrupted()) {

@@ -14,7 +14,7 @@ std::vector<bool> ClosedPairs(const ContactScales& scales, const Vec& g, const V
 }
 
 BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactScales& scales,
-                                     const State& state)
+                                     const State& state, Use use)
     : dofs_(model.num_dofs()) {
   const int d = dofs_;
   SpMat stiffness, curvature, gap_jacobian;
@@ -72,6 +72,14 @@ BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactSca
     message_ = "the bordered stiffness has a non-finite entry";
     return;
   }
+  Eigen::SimplicialLDLT<SpMat> ldlt(penalised);
+  if (ldlt.info() == Eigen::Success) {
+    unstable_modes_ = static_cast<int>((ldlt.vectorD().array() < 0.0).count());
+  }
+  if (use == Use::kModes) {
+    message_ = "factorised for the unstable modes only";
+    return;
+  }
   lu_.compute(bordered);
   if (lu_.info() != Eigen::Success) {
     message_ = "the stiffness bordered by the closed contacts is singular (" +
@@ -79,10 +87,6 @@ BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactSca
     return;
   }
   ok_ = true;
-  Eigen::SimplicialLDLT<SpMat> ldlt(penalised);
-  if (ldlt.info() == Eigen::Success) {
-    unstable_modes_ = static_cast<int>((ldlt.vectorD().array() < 0.0).count());
-  }
 }
 
 bool BorderedStiffness::SolveDisplacement(const Vec& rhs, Vec* du) const {

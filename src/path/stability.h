@@ -30,10 +30,16 @@ namespace cb {
 
 class BorderedStiffness {
  public:
-  // Assembles and factorises A at `state`.
-  BorderedStiffness(const ContactModel& model, const ContactScales& scales, const State& state);
+  // kModes counts the unstable modes only (one LDL^T: what the driver needs at every accepted
+  // state); kModesAndSolves also factorises A for the tangent and the null vector.
+  enum class Use { kModes, kModesAndSolves };
 
-  // False when A is numerically singular or not finite; message() says why.
+  // Assembles A at `state`, counts its unstable modes and, for kModesAndSolves, factorises it.
+  BorderedStiffness(const ContactModel& model, const ContactScales& scales, const State& state,
+                    Use use = Use::kModesAndSolves);
+
+  // False when A is numerically singular, not finite or not factorised (kModes); message()
+  // says why.
   bool ok() const { return ok_; }
   const std::string& message() const { return message_; }
   // The number of negative eigenvalues of Z^T K_t Z (0: stable); -1 when not computed.
