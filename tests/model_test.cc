@@ -635,6 +635,39 @@ TEST(ModelTest, GeneralisedReactionIsGapJacobianTransposeTimesR) {
   }
 }
 
+// The one-pass evaluations a Newton iteration uses (residual: phi and grad phi^T r; Jacobian:
+// grad phi and the curvature) give exactly what the single functions and the interface's
+// defaults give, mixed flat and curved pairs included.
+TEST(ModelTest, OnePassContactEvaluationsMatchTheSingleOnes) {
+  for (const BodyContactModel& model : {MakeTrussContact2D(), MakeTrussContact3D()}) {
+    std::mt19937 rng(31);
+    const Vec u = RandomVec(model.num_dofs(), 0.2, &rng);
+    const Vec r = RandomVec(model.num_pairs(), 1.0, &rng);
+    Vec phi, reaction, phi_default, reaction_default;
+    model.GapsAndReaction(u, r, &phi, &reaction);
+    model.ContactModel::GapsAndReaction(u, r, &phi_default, &reaction_default);
+    Vec phi_single, reaction_single;
+    model.Gaps(u, &phi_single);
+    model.GeneralisedReaction(u, r, &reaction_single);
+    EXPECT_EQ((phi - phi_single).norm(), 0.0);
+    EXPECT_EQ((reaction - reaction_single).norm(), 0.0);
+    EXPECT_EQ((phi - phi_default).norm(), 0.0);
+    EXPECT_EQ((reaction - reaction_default).norm(), 0.0);
+
+    SpMat jac, curvature, jac_single, curvature_single;
+    model.GapDerivatives(u, r, &jac, &curvature);
+    model.GapJacobian(u, &jac_single);
+    model.GapCurvature(u, r, &curvature_single);
+    EXPECT_GT(Dense(curvature).norm(), 0.0);
+    EXPECT_EQ((Dense(jac) - Dense(jac_single)).norm(), 0.0);
+    EXPECT_EQ((Dense(curvature) - Dense(curvature_single)).norm(), 0.0);
+    SpMat jac_default, curvature_default;
+    model.ContactModel::GapDerivatives(u, r, &jac_default, &curvature_default);
+    EXPECT_EQ((Dense(jac) - Dense(jac_default)).norm(), 0.0);
+    EXPECT_EQ((Dense(curvature) - Dense(curvature_default)).norm(), 0.0);
+  }
+}
+
 TEST(ModelTest, BodyContactPatternsIgnoreUAndR) {
   const BodyContactModel model = MakeTrussContact2D();
   std::mt19937 rng(23);

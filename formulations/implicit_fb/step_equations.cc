@@ -118,8 +118,7 @@ bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
   const double rho = l.has_rho ? x[l.rho()] : 0.0;
   u_ = step_.base.u + du;
   model.InternalForce(u_, &internal_);
-  model.Gaps(u_, &phi_);
-  model.GeneralisedReaction(u_, r, &reaction_);  // grad phi^T r^, without assembling grad phi
+  model.GapsAndReaction(u_, r, &phi_, &reaction_);  // grad phi^T r^, without assembling grad phi
 
   residual->resize(l.size());
   const double lambda = step_.base.lambda + dlambda;
@@ -153,8 +152,8 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   const double dlambda = x[l.dlambda()];
   const double rho = l.has_rho ? x[l.rho()] : 0.0;
   u_ = step_.base.u + du;
-  model.GapJacobian(u_, &gap_jacobian_);
-  model.GapCurvature(u_, force * r, &curvature_);
+  reaction_force_ = force * r;
+  model.GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
 
   const int row3 = l.complementarity_row();
   const int row5 = l.constraint_row();

@@ -119,7 +119,7 @@ class StepEquationSystem : public EquationSystem {
   JacobianStructure structure_;
   bool has_structure_ = false;
   // Work storage reused across evaluations.
-  Vec u_, internal_, phi_, reaction_;
+  Vec u_, internal_, phi_, reaction_, reaction_force_;
   SpMat curvature_, gap_jacobian_;
 };
 

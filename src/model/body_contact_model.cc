@@ -97,74 +97,107 @@ bool BodyContactModel::is_linear() const {
   return true;
 }
 
-Point BodyContactModel::PairPosition(int p, const Vec& u) const {
-  Point x = pair_reference_[p];
+void BodyContactModel::EvaluatePair(int p, const Vec& u, Obstacle::Order order,
+                                    ObstacleLocal* local) const {
+  double x[3];
+  const Point& reference = pair_reference_[p];
   const std::array<int, 3>& dofs = pair_dofs_[p];
-  for (int c = 0; c < x.size(); ++c) {
-    if (dofs[c] >= 0) x[c] += u[dofs[c]];
-  }
-  return x;
+  for (int c = 0; c < reference.size(); ++c) x[c] = reference[c] + (dofs[c] >= 0 ? u[dofs[c]] : 0.0);
+  obstacles_[pairs_[p].obstacle]->Evaluate(x, order, local);
 }
 
-void BodyContactModel::Gaps(const Vec& u, Vec* phi) const {
+// phi_p and, with r, the generalised reaction grad phi^T r of (9), one obstacle evaluation per
+// pair.
+void BodyContactModel::AddReaction(const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const {
   CheckSize(u, num_dofs(), "Gaps", "u");
-  phi->resize(num_pairs());
+  if (r != nullptr) CheckSize(*r, num_pairs(), "GeneralisedReaction", "r");
+  if (phi != nullptr) phi->resize(num_pairs());
+  if (reaction != nullptr) reaction->setZero(num_dofs());
+  const Obstacle::Order order = reaction != nullptr ? Obstacle::Order::kGradient
+                                                    : Obstacle::Order::kValue;
+  const int dim = body_->dim();
+  ObstacleLocal local;
   for (int p = 0; p < num_pairs(); ++p) {
-    (*phi)[p] = obstacles_[pairs_[p].obstacle]->Value(PairPosition(p, u));
-  }
-}
-
-void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
-  CheckSize(u, num_dofs(), "GeneralisedReaction", "u");
-  CheckSize(r, num_pairs(), "GeneralisedReaction", "r");
-  reaction->setZero(num_dofs());
-  for (int p = 0; p < num_pairs(); ++p) {
-    const Point grad = obstacles_[pairs_[p].obstacle]->Gradient(PairPosition(p, u));
+    EvaluatePair(p, u, order, &local);
+    if (phi != nullptr) (*phi)[p] = local.value;
+    if (reaction == nullptr) continue;
     const std::array<int, 3>& dofs = pair_dofs_[p];
-    for (int c = 0; c < grad.size(); ++c) {
-      if (dofs[c] >= 0) (*reaction)[dofs[c]] += grad[c] * r[p];
+    for (int c = 0; c < dim; ++c) {
+      if (dofs[c] >= 0) (*reaction)[dofs[c]] += local.gradient[c] * (*r)[p];
     }
   }
 }
 
 // Row p of grad phi: d varphi(X + u_node) / d u = grad varphi on the node's free components
 // (the position depends on u with unit slope there and not at all on supported components).
-void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
+// With r, also sum_p r_p hess phi_p(u): the node's free-dof block of r_p hess varphi for curved
+// obstacles, the curvature term of dF1/ddu in (29). Both patterns were fixed by the
+// constructor; the pairs are visited in that order.
+void BodyContactModel::AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobian,
+                                      SpMat* curvature) const {
   CheckSize(u, num_dofs(), "GapJacobian", "u");
-  jacobian_pattern_.Reset(jacobian);
-  double* values = jacobian->valuePtr();
-  const std::vector<int>& slots = jacobian_pattern_.slots();
-  std::size_t next = 0;
-  for (int p = 0; p < num_pairs(); ++p) {
-    const Point grad = obstacles_[pairs_[p].obstacle]->Gradient(PairPosition(p, u));
-    const std::array<int, 3>& dofs = pair_dofs_[p];
-    for (int c = 0; c < grad.size(); ++c) {
-      if (dofs[c] >= 0) values[slots[next++]] += grad[c];
-    }
-  }
-}
-
-// sum_p r_p hess phi_p(u): the node's free-dof block of r_p hess varphi for curved obstacles,
-// the curvature term of dF1/ddu in (29).
-void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const {
-  CheckSize(u, num_dofs(), "GapCurvature", "u");
-  CheckSize(r, num_pairs(), "GapCurvature", "r");
-  curvature_pattern_.Reset(curvature);
-  double* values = curvature->valuePtr();
+  if (r != nullptr) CheckSize(*r, num_pairs(), "GapCurvature", "r");
   const int dim = body_->dim();
-  const std::vector<int>& slots = curvature_pattern_.slots();
-  std::size_t next = 0;
-  for (int p : curved_pairs_) {
-    const PointMat hess = obstacles_[pairs_[p].obstacle]->Hessian(PairPosition(p, u));
+  double* jacobian_values = nullptr;
+  double* curvature_values = nullptr;
+  if (jacobian != nullptr) {
+    jacobian_pattern_.Reset(jacobian);
+    jacobian_values = jacobian->valuePtr();
+  }
+  if (curvature != nullptr) {
+    curvature_pattern_.Reset(curvature);
+    curvature_values = curvature->valuePtr();
+  }
+  const int* jacobian_slots = jacobian_pattern_.slots().data();
+  const int* curvature_slots = curvature_pattern_.slots().data();
+  std::size_t next_jacobian = 0, next_curvature = 0;
+  ObstacleLocal local;
+  for (int p = 0; p < num_pairs(); ++p) {
+    const bool curved = obstacles_[pairs_[p].obstacle]->is_curved();
+    if (jacobian == nullptr && !curved) continue;
+    EvaluatePair(p, u, curved && curvature != nullptr ? Obstacle::Order::kHessian
+                                                      : Obstacle::Order::kGradient,
+                 &local);
     const std::array<int, 3>& dofs = pair_dofs_[p];
+    if (jacobian != nullptr) {
+      for (int c = 0; c < dim; ++c) {
+        if (dofs[c] >= 0) jacobian_values[jacobian_slots[next_jacobian++]] += local.gradient[c];
+      }
+    }
+    if (curvature == nullptr || !curved) continue;
+    const double rp = (*r)[p];
     for (int b = 0; b < dim; ++b) {
       if (dofs[b] < 0) continue;
       for (int a = 0; a < dim; ++a) {
         if (dofs[a] < 0) continue;
-        values[slots[next++]] += r[p] * hess(a, b);
+        curvature_values[curvature_slots[next_curvature++]] += rp * local.hessian[a][b];
       }
     }
   }
+}
+
+void BodyContactModel::Gaps(const Vec& u, Vec* phi) const { AddReaction(u, nullptr, phi, nullptr); }
+
+void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
+  AddReaction(u, &r, nullptr, reaction);
+}
+
+void BodyContactModel::GapsAndReaction(const Vec& u, const Vec& r, Vec* phi,
+                                       Vec* reaction) const {
+  AddReaction(u, &r, phi, reaction);
+}
+
+void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
+  AddDerivatives(u, nullptr, jacobian, nullptr);
+}
+
+void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const {
+  AddDerivatives(u, &r, nullptr, curvature);
+}
+
+void BodyContactModel::GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
+                                      SpMat* curvature) const {
+  AddDerivatives(u, &r, jacobian, curvature);
 }
 
 }  // namespace cb

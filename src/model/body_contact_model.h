@@ -43,6 +43,9 @@ class BodyContactModel final : public ContactModel {
   void GapJacobian(const Vec& u, SpMat* jacobian) const override;
   void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override;
   void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
+  void GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const override;
+  void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
+                      SpMat* curvature) const override;
   const Vec& load_pattern() const override { return load_; }
 
   const ElasticBody& body() const { return *body_; }
@@ -53,8 +56,11 @@ class BodyContactModel final : public ContactModel {
   std::shared_ptr<const ElasticBody> body_;
   std::vector<std::shared_ptr<const Obstacle>> obstacles_;
   std::vector<ContactPair> pairs_;
-  // Current position of pair p's node, from the per-pair data below (no virtual calls).
-  Point PairPosition(int p, const Vec& u) const;
+  // varphi of pair p at its node's current position, up to `order`.
+  void EvaluatePair(int p, const Vec& u, Obstacle::Order order, ObstacleLocal* local) const;
+  // The pair loops behind the public functions (a null output is skipped).
+  void AddReaction(const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const;
+  void AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobian, SpMat* curvature) const;
 
   Vec load_;
   std::vector<Point> pair_reference_;          // X of each pair's node

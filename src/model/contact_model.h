@@ -69,6 +69,19 @@ class ContactModel {
   // sum_p r_p hess phi_p(u) (d x d), the curvature term of curved obstacles. Its pattern
   // depends on neither u nor r (pairs on flat obstacles contribute nothing).
   virtual void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const = 0;
+  // The contact part of a residual, phi(u) and grad phi(u)^T r, and of a Jacobian, grad phi(u)
+  // and sum_p r_p hess phi_p(u), each pair in one pass: a Newton iteration needs both members
+  // of each couple at the same u. The defaults call the single functions; models whose pairs
+  // share work between them override.
+  virtual void GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const {
+    Gaps(u, phi);
+    GeneralisedReaction(u, r, reaction);
+  }
+  virtual void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
+                              SpMat* curvature) const {
+    GapJacobian(u, jacobian);
+    GapCurvature(u, r, curvature);
+  }
 
   // f: the external load is lambda f (size d).
   virtual const Vec& load_pattern() const = 0;

@@ -18,7 +18,39 @@ std::string FormatPoint(const Point& x) {
 
 bool IsSupportedDim(Eigen::Index dim) { return dim == 2 || dim == 3; }
 
+void CheckPoint(const Obstacle& obstacle, const Point& x) {
+  if (x.size() != obstacle.dim()) {
+    throw std::invalid_argument("Obstacle: the point has dimension " + std::to_string(x.size()) +
+                                ", the obstacle " + std::to_string(obstacle.dim()));
+  }
+}
+
 }  // namespace
+
+double Obstacle::Value(const Point& x) const {
+  CheckPoint(*this, x);
+  ObstacleLocal local;
+  Evaluate(x.data(), Order::kValue, &local);
+  return local.value;
+}
+
+Point Obstacle::Gradient(const Point& x) const {
+  CheckPoint(*this, x);
+  ObstacleLocal local;
+  Evaluate(x.data(), Order::kGradient, &local);
+  return Eigen::Map<const Point>(local.gradient, dim());
+}
+
+PointMat Obstacle::Hessian(const Point& x) const {
+  CheckPoint(*this, x);
+  ObstacleLocal local;
+  Evaluate(x.data(), Order::kHessian, &local);
+  PointMat h(dim(), dim());
+  for (int a = 0; a < dim(); ++a) {
+    for (int b = 0; b < dim(); ++b) h(a, b) = local.hessian[a][b];
+  }
+  return h;
+}
 
 // --- HalfSpace: varphi(x) = n.(x - p), an affine function with |grad varphi| = 1 -------------
 
@@ -47,11 +79,14 @@ std::string HalfSpace::Describe() const {
          " n.(x - p) > 0 with p = " + FormatPoint(point_) + ", n = " + FormatPoint(normal_);
 }
 
-double HalfSpace::Value(const Point& x) const { return normal_.dot(x - point_); }
-
-Point HalfSpace::Gradient(const Point& /*x*/) const { return normal_; }
-
-PointMat HalfSpace::Hessian(const Point& /*x*/) const { return PointMat::Zero(dim(), dim()); }
+void HalfSpace::Evaluate(const double* x, Order order, ObstacleLocal* out) const {
+  const int d = dim();
+  out->value = 0.0;
+  for (int c = 0; c < d; ++c) out->value += normal_[c] * (x[c] - point_[c]);
+  if (order == Order::kValue) return;
+  for (int c = 0; c < d; ++c) out->gradient[c] = normal_[c];
+  // The Hessian is zero: ObstacleLocal starts zeroed and nothing here writes to it.
+}
 
 // --- Ball: varphi(x) = s (|x - c| - a), s = -1 (solid) or +1 (cavity) -----------------------
 //
@@ -83,34 +118,37 @@ std::string Ball::Describe() const {
   return out.str();
 }
 
-double Ball::Value(const Point& x) const { return sign() * ((x - centre_).norm() - radius_); }
-
-Point Ball::Gradient(const Point& x) const {
-  Point n = x - centre_;
-  const double rho = n.norm();
-  if (!(rho > 0.0)) {
-    // At the centre the distance has no gradient (every direction is steepest). Return the
-    // first axis, a well-defined unit vector, so that solvers never see NaN; any unit vector
-    // is an element of the generalised gradient there.
-    Point e = Point::Zero(dim());
-    e[0] = sign();
-    return e;
+void Ball::Evaluate(const double* x, Order order, ObstacleLocal* out) const {
+  const int d = dim();
+  const double s = sign();
+  double n[3] = {0.0, 0.0, 0.0};
+  double rho2 = 0.0;
+  for (int c = 0; c < d; ++c) {
+    n[c] = x[c] - centre_[c];
+    rho2 += n[c] * n[c];
   }
-  n /= rho;
-  return sign() * n;
-}
-
-PointMat Ball::Hessian(const Point& x) const {
-  Point n = x - centre_;
-  const double rho = n.norm();
-  // At the centre the curvature is unbounded (it grows like 1 / |x - c|); return zero, a
-  // finite value, rather than Inf/NaN. Only a node exactly at the centre sees this.
-  if (!(rho > 0.0)) return PointMat::Zero(dim(), dim());
-  n /= rho;
-  PointMat h = PointMat::Identity(dim(), dim());
-  h.noalias() -= n * n.transpose();
-  h *= sign() / rho;
-  return h;
+  const double rho = std::sqrt(rho2);
+  out->value = s * (rho - radius_);
+  if (order == Order::kValue) return;
+  if (!(rho > 0.0)) {
+    // At the centre the distance has no gradient (every direction is steepest): the first
+    // axis, a well-defined unit vector and an element of the generalised gradient there, so
+    // that solvers never see NaN. The curvature is unbounded (it grows like 1 / |x - c|): the
+    // Hessian is left zero, a finite value, rather than Inf/NaN. Only a node exactly at the
+    // centre sees this.
+    for (int c = 0; c < d; ++c) out->gradient[c] = c == 0 ? s : 0.0;
+    return;
+  }
+  const double inv_rho = 1.0 / rho;
+  for (int c = 0; c < d; ++c) {
+    n[c] *= inv_rho;
+    out->gradient[c] = s * n[c];
+  }
+  if (order != Order::kHessian) return;
+  const double scale = s * inv_rho;
+  for (int a = 0; a < d; ++a) {
+    for (int b = 0; b < d; ++b) out->hessian[a][b] = scale * ((a == b ? 1.0 : 0.0) - n[a] * n[b]);
+  }
 }
 
 }  // namespace cb

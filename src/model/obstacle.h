@@ -10,16 +10,34 @@
 
 namespace cb {
 
+// varphi and its derivatives at one point, in fixed-size storage (dim() entries used): the
+// model's loops over contact pairs fill one per pair without allocation.
+struct ObstacleLocal {
+  double value = 0.0;
+  double gradient[3] = {0.0, 0.0, 0.0};
+  double hessian[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+};
+
 class Obstacle {
  public:
+  // How much of ObstacleLocal Evaluate fills.
+  enum class Order { kValue, kGradient, kHessian };
+
   virtual ~Obstacle() = default;
   virtual int dim() const = 0;
   virtual std::string Describe() const = 0;
-  virtual double Value(const Point& x) const = 0;
-  virtual Point Gradient(const Point& x) const = 0;
-  virtual PointMat Hessian(const Point& x) const = 0;
+  // varphi(x) and, up to `order`, its gradient and Hessian (x has dim() entries). One
+  // evaluation shares the work between them (a ball's |x - c|), which a Newton iteration on a
+  // curved obstacle needs at every pair (residual: value and gradient; Jacobian: gradient and
+  // Hessian).
+  virtual void Evaluate(const double* x, Order order, ObstacleLocal* out) const = 0;
   // False when the Hessian is identically zero (flat obstacles): no curvature entries needed.
   virtual bool is_curved() const = 0;
+
+  // Evaluate() for one quantity, for callers outside the hot loops.
+  double Value(const Point& x) const;
+  Point Gradient(const Point& x) const;
+  PointMat Hessian(const Point& x) const;
 };
 
 // The half-space {x : n.(x - p) > 0} (half-plane in 2-D); `normal` points into the obstacle
@@ -29,9 +47,7 @@ class HalfSpace final : public Obstacle {
   HalfSpace(Point point, Point normal);
   int dim() const override { return static_cast<int>(point_.size()); }
   std::string Describe() const override;
-  double Value(const Point& x) const override;
-  Point Gradient(const Point& x) const override;
-  PointMat Hessian(const Point& x) const override;
+  void Evaluate(const double* x, Order order, ObstacleLocal* out) const override;
   bool is_curved() const override { return false; }
   // The definition, for writing the obstacle back out (src/io/).
   const Point& point() const { return point_; }
@@ -51,9 +67,7 @@ class Ball final : public Obstacle {
   Ball(Point centre, double radius, Side side);
   int dim() const override { return static_cast<int>(centre_.size()); }
   std::string Describe() const override;
-  double Value(const Point& x) const override;
-  Point Gradient(const Point& x) const override;
-  PointMat Hessian(const Point& x) const override;
+  void Evaluate(const double* x, Order order, ObstacleLocal* out) const override;
   bool is_curved() const override { return true; }
   const Point& centre() const { return centre_; }
   double radius() const { return radius_; }

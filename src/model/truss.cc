@@ -38,7 +38,7 @@ Truss::MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
 // the exact reference difference plus the displacement difference, and
 //   l - L = (l^2 - L^2) / (l + L) = (2 dX.du + |du|^2) / (l + L)
 // keeps full relative accuracy of the elongation even when it is tiny.
-Truss::Kinematics Truss::MemberKinematics(std::size_t member, const Vec& u) const {
+inline Truss::Kinematics Truss::MemberKinematics(std::size_t member, const Vec& u) const {
   const int d = dim();
   const MemberDofs& md = member_dofs_[member];
   const double* dx = reference_deltas_[member].data();
