@@ -3,15 +3,17 @@
 # results/COMPARISON.md. Records go to RESULTS_DIR/compare/<set>/ (default results/compare/):
 #
 #   arch-flat, arch-curved   P2 and P3, the FULL default path of each problem (its `steps`
-#                            parameter: 600 and 1604 steps unless the problem's defaults change),
-#                            every available formulation except nlopt-mpcc, warm and cold;
-#                            those that cannot express an arc-length step are listed as skipped.
+#                            parameter: 2000 and 1604 steps unless the problem's defaults change),
+#                            every available formulation except the two slow NLopt ones, warm and
+#                            cold; those that cannot express an arc-length step are listed as
+#                            skipped.
 #   arch-flat-prefix, arch-curved-prefix
 #                            the first PREFIX_STEPS (default 50) steps of the same paths with
-#                            every formulation INCLUDING nlopt-mpcc (dense SLSQP: 1-5 s per P3
-#                            step against 0.1 ms for implicit-fb, so the full P3 path, warm and
-#                            cold, would take about 4 hours). With the default reconstruction the
-#                            prefix is the linear part of the path before any contact.
+#                            every formulation INCLUDING nlopt-mpcc and nlopt-merit, the two left
+#                            out of the full paths: dense SLSQP takes 1-5 s per P3 step against
+#                            0.1 ms for implicit-fb, and LBFGS on the merit ~2.6 s per P2 step
+#                            (it stops at its evaluation limit without verifying a step), so
+#                            each would need hours on the full paths, warm and cold.
 #   block                    P1 (n = 50, the report's mesh), the single fixed-load solve from the
 #                            cold start, every available formulation (nlopt-mpcc refuses it:
 #                            dense above 2000 unknowns, recorded as skipped). Cold only: a
@@ -47,7 +49,8 @@ mapfile -t available < <("$cb" list | awk '/^formulations:/ {f = 1; next} /^[a-z
   f && NF && $0 !~ /\(not built\)/ {print $1}')
 join() { local IFS=,; echo "$*"; }
 all="$(join "${available[@]}")"
-without_slsqp="$(join $(printf '%s\n' "${available[@]}" | grep -vx nlopt-mpcc))"
+# The full paths without the two NLopt formulations that take seconds per step (see above).
+full_path_set="$(join $(printf '%s\n' "${available[@]}" | grep -vx -e nlopt-mpcc -e nlopt-merit))"
 
 status=0
 compare() {  # compare SET ARGS...
@@ -66,7 +69,7 @@ sets=("$@")
 for set in "${sets[@]}"; do
   case "$set" in
     arch-flat|arch-curved)
-      compare "$set" --problem "$set" --formulations "$without_slsqp" --starts warm,cold \
+      compare "$set" --problem "$set" --formulations "$full_path_set" --starts warm,cold \
           "${full_steps[@]}" ;;
     arch-flat-prefix|arch-curved-prefix)
       compare "$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \

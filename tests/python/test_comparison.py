@@ -118,5 +118,45 @@ class Aggregate(unittest.TestCase):
         self.assertEqual((h[4], h["failed"], sum(h[k] for k in range(13)) + h["more"]), (1, 1, 1))
 
 
+class Targets(unittest.TestCase):
+    """target_rows on a hand-made benchmark table: P1 times growing as d^1.2 exactly, a P3 ratio
+    above the bound, a failed benchmark and missing ones."""
+
+    def setUp(self):
+        rows = []
+        for n in (25, 50, 100, 200, 400):
+            d = 2 * (n + 1) ** 2
+            t = 1e-5 * d ** 1.2
+            rows.append({"run_name": f"BM_BlockColdSolve/cholmod/{n}", "error_occurred": False,
+                         "seconds": t, "cpu_seconds": t, "d": d, "newton_iterations": 13,
+                         "solve_peak_mb": 2e-3 * d, "solve_bytes_per_dof": 2048.0})
+        rows.append({"run_name": "BM_IterationOverFactorizationArchCurved/cholmod/100",
+                     "error_occurred": False, "seconds": 3e-5, "cpu_seconds": 3e-5,
+                     "ratio": 2.0, "kernel_ratio": 1.8, "per_newton_iteration_us": 60.0,
+                     "lu_factorize_solve_us": 30.0})
+        rows.append({"run_name": "BM_ArchCurvedWarmStep/cholmod/100", "error_occurred": True,
+                     "seconds": 1e-4, "cpu_seconds": 1e-4})
+        self.rows = {t: (m, ok) for t, m, ok in c.target_rows(pd.DataFrame(rows))}
+
+    def test_bounds(self):
+        p1 = self.rows["P1 n = 50 cold solve < 0.1 s"]
+        self.assertIs(p1[1], 1e-5 * 5202 ** 1.2 < 0.1)
+        ratio = self.rows["Newton iteration / KLU factorisation + solve of its Jacobian <= 1.5, "
+                          "P3, step 100"]
+        self.assertIs(ratio[1], False)
+        self.assertIn("60 / 30 us = 2", ratio[0])
+
+    def test_growth_is_fitted(self):
+        growth = self.rows["P1 time growth, n = 50 to 400, <= d^1.3"]
+        self.assertEqual((growth[0].split(" ")[0], growth[1]), ("d^1.20", True))
+
+    def test_failed_and_missing_are_not_measured(self):
+        self.assertEqual(self.rows["one warm P3 step (after step 100) < 0.5 ms"],
+                         ("not measured", "not measured"))
+        self.assertEqual(self.rows["whole P3 path (1604 steps, kinks located) < 1.5 s"],
+                         ("not measured", "not measured"))
+        self.assertIsNone(self.rows["peak memory of the P1 solve reported, linear in d"][1])
+
+
 if __name__ == "__main__":
     unittest.main()
