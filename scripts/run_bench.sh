@@ -10,9 +10,8 @@
 #
 # Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
 # its own (solves of seconds are measured once; see each binary's header comment).
-# Run time on the 2-core machine of the README, estimated from the single benchmarks' times
-# (not measured end to end on a quiet machine): about 12 minutes (implicit_fb_benchmark ~4,
-# formulation_step_benchmark ~3, scaling_benchmark ~5: n = 400 and ipopt-energy dominate).
+# Run time on the 2-core machine of the README, measured on the quiet machine: 15 minutes
+# (implicit_fb_benchmark 448 s, formulation_step_benchmark 249 s, scaling_benchmark 199 s).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), REPETITIONS (3),
 # SKIP_SETUP=1 to use an existing build without running setup.sh.
@@ -32,9 +31,18 @@ for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark
   fi
   echo "== $binary -> $out/$binary.json" >&2
   start=$SECONDS
-  "$exe" --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
-      --benchmark_out="$out/$binary.json" --benchmark_out_format=json "$@" \
-      > "$out/$binary.txt" || { echo "   ($binary failed)" >&2; status=1; }
+  run=("$exe" --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true
+       --benchmark_out="$out/$binary.json" --benchmark_out_format=json "$@")
+  if [[ -t 2 ]]; then
+    # On a terminal the console table also goes to the screen as each benchmark finishes (the
+    # progress of a run of minutes); otherwise only to the .txt file.
+    "${run[@]}" | tee "$out/$binary.txt" >&2
+    rc=${PIPESTATUS[0]}
+  else
+    "${run[@]}" > "$out/$binary.txt"
+    rc=$?
+  fi
+  ((rc == 0)) || { echo "   ($binary failed)" >&2; status=1; }
   echo "   $((SECONDS - start)) s" >&2
 done
 exit $status

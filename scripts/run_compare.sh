@@ -25,11 +25,10 @@
 # Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
 # depends on the reconstruction choices.
 #
-# Run time on the 2-core machine of the README, estimated from the per-step times of the
-# 200-step P3 comparison (not yet measured end to end on a quiet machine): about 25 minutes
-# (P3 full path: ipopt-mpcc ~6 min, the rest ~2 min; the two prefixes with nlopt-mpcc ~12 min;
-# P2 and P1 ~2 min). With three other jobs sharing the 2 cores, the P2 set took 94 s and the P3
-# set over 25 minutes.
+# Run time on the 2-core machine of the README, measured (with run_bench.sh busy on the other
+# core for the first 22 minutes): 28.5 minutes
+# (arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s, arch-curved-prefix 818 s, of
+# which ~550 s nlopt-mpcc and ~250 s nlopt-merit, block 6 s).
 # Usage: scripts/run_compare.sh [SET ...]   (default: all five sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), SKIP_SETUP=1 to use an existing build without running setup.sh.
