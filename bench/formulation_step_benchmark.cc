@@ -6,7 +6,8 @@
 //
 // Representative steps (chosen from the reference path at start-up, so they follow the
 // problem's parameters; the step number is in the benchmark's name and the `step` counter):
-//  early          step 10: the linear part of the path, before any contact;
+//  early          step 10: early on the path, small displacements (with the default
+//                 reconstruction the first contact closes before it, at step 8);
 //  first-contact  the first step whose answer has a pair in contact (g/L < -r/R): the contact
 //                 status changes inside the step, so the warm start's prediction is off;
 //  last           the last step of the default path (deepest into the loading).

@@ -101,7 +101,15 @@ def growth_exponent(d, t):
 def comparison_sets(results_dir):
     """(name, runs, steps) per `compare` output directory under results_dir/compare."""
     root = os.path.join(results_dir, "compare")
-    for runs_csv in sorted(glob.glob(os.path.join(root, "**", "runs.csv"), recursive=True)):
+    # The order of scripts/run_compare.sh (full paths, prefixes, P1), then any other set.
+    order = ["arch-flat", "arch-curved", "arch-flat-prefix", "arch-curved-prefix", "block"]
+
+    def key(path):
+        name = os.path.relpath(os.path.dirname(path), root)
+        return (order.index(name) if name in order else len(order), name)
+
+    for runs_csv in sorted(glob.glob(os.path.join(root, "**", "runs.csv"), recursive=True),
+                           key=key):
         d = os.path.dirname(runs_csv)
         steps_csv = os.path.join(d, "steps.csv")
         if not os.path.exists(steps_csv):
