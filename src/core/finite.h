@@ -3,23 +3,27 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
-#include <cstring>
 
 namespace cb {
 
-// True when no value is NaN or +-Inf. Reads the exponent bits (all ones for NaN and Inf) with an
-// integer OR-reduction, which the compiler vectorises; std::isfinite in an early-exit loop does
-// not vectorise.
+// True when no value is NaN or +-Inf. x * 0 is (+-)0 for every finite x and NaN for NaN and
+// +-Inf, so the sum of the products is NaN exactly when some value is not finite. Four
+// independent sums let the compiler use packed SSE2 arithmetic without reassociating (no
+// -ffast-math): 0.66 us for 5000 values against 2.2 us for an exponent-bit test, which does not
+// vectorise on baseline x86-64 (no 64-bit integer compare before SSE4.1), nor std::isfinite in
+// an early-exit loop. Two such checks run per Newton iteration (Jacobian, linear solver).
 inline bool AllFinite(const double* values, std::size_t n) {
-  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
-  std::uint64_t any = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t bits;
-    std::memcpy(&bits, values + i, sizeof(bits));
-    any |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += values[i] * 0.0;
+    s1 += values[i + 1] * 0.0;
+    s2 += values[i + 2] * 0.0;
+    s3 += values[i + 3] * 0.0;
   }
-  return any == 0;
+  for (; i < n; ++i) s0 += values[i] * 0.0;
+  const double sum = (s0 + s1) + (s2 + s3);
+  return sum == sum;  // false only for NaN
 }
 
 }  // namespace cb

@@ -175,7 +175,17 @@ void Truss::Stiffness(const Vec& u, SpMat* stiffness) const {
 
 void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* values) const {
   CheckSize(u, num_dofs(), "AddStiffness");
-  const int d = dim();
+  // The dimension as a compile-time constant: the block loops unroll (the same operations in
+  // the same order, so the values are those of a generic loop to the last bit).
+  if (dim() == 2) {
+    AddStiffnessOf<2>(u, scale, slots, values);
+  } else {
+    AddStiffnessOf<3>(u, scale, slots, values);
+  }
+}
+
+template <int D>
+void Truss::AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values) const {
   std::size_t next = 0;
   for (std::size_t k = 0; k < members_.size(); ++k) {
     const TrussMember& m = members_[k];
@@ -184,13 +194,13 @@ void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* v
     const double inv_reference = 1.0 / lengths_[k];
     const double ea = scale * m.youngs_modulus * m.area;  // the block is scaled through E A
     const double axial = ea * kin.elongation * inv_reference;
-    double e[3];
-    for (int c = 0; c < d; ++c) e[c] = kin.delta[c] * inv_length;
+    double e[D];
+    for (int c = 0; c < D; ++c) e[c] = kin.delta[c] * inv_length;
     const double geometric = axial * inv_length;
     const double material_minus_geometric = ea * inv_reference - geometric;
-    double block[3][3];
-    for (int a = 0; a < d; ++a) {
-      for (int b = 0; b < d; ++b) {
+    double block[D][D];
+    for (int a = 0; a < D; ++a) {
+      for (int b = 0; b < D; ++b) {
         block[a][b] = (a == b ? geometric : 0.0) + material_minus_geometric * e[a] * e[b];
       }
     }
@@ -198,12 +208,12 @@ void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* v
     // (column b, then row a, over the free dofs).
     const MemberDofs& md = member_dofs_[k];
     for (int side_b = 0; side_b < 2; ++side_b) {
-      for (int cb = 0; cb < d; ++cb) {
-        if (md.dof[side_b * d + cb] < 0) continue;
+      for (int cb = 0; cb < D; ++cb) {
+        if (md.dof[side_b * D + cb] < 0) continue;
         for (int side_a = 0; side_a < 2; ++side_a) {
           const double sign = side_a == side_b ? 1.0 : -1.0;
-          for (int ca = 0; ca < d; ++ca) {
-            if (md.dof[side_a * d + ca] < 0) continue;
+          for (int ca = 0; ca < D; ++ca) {
+            if (md.dof[side_a * D + ca] < 0) continue;
             values[slots[next++]] += sign * block[ca][cb];
           }
         }

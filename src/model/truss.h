@@ -53,6 +53,8 @@ class Truss final : public ElasticBody {
   };
 
   Kinematics MemberKinematics(std::size_t member, const Vec& u) const;
+  template <int D>
+  void AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values) const;
 
   Mat coordinates_;
   std::vector<TrussMember> members_;
