@@ -10,8 +10,8 @@
 #
 # Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
 # its own (solves of seconds are measured once; see each binary's header comment).
-# Run time on the 2-core machine of the README, measured on the quiet machine: 15 minutes
-# (implicit_fb_benchmark 448 s, formulation_step_benchmark 249 s, scaling_benchmark 199 s).
+# Run time on the 2-core machine of the README, measured on the quiet machine: 16 minutes
+# (implicit_fb_benchmark 469 s, formulation_step_benchmark 255 s, scaling_benchmark 228 s).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), REPETITIONS (3),
 # SKIP_SETUP=1 to use an existing build without running setup.sh.
