@@ -102,19 +102,21 @@ void BodyContactModel::EvaluatePair(int p, const Vec& u, Obstacle::Order order,
   double x[3];
   const Point& reference = pair_reference_[p];
   const std::array<int, 3>& dofs = pair_dofs_[p];
-  for (int c = 0; c < reference.size(); ++c) x[c] = reference[c] + (dofs[c] >= 0 ? u[dofs[c]] : 0.0);
+  for (int c = 0; c < reference.size(); ++c)
+    x[c] = reference[c] + (dofs[c] >= 0 ? u[dofs[c]] : 0.0);
   obstacles_[pairs_[p].obstacle]->Evaluate(x, order, local);
 }
 
 // phi_p and, with r, the generalised reaction grad phi^T r of (9), one obstacle evaluation per
 // pair.
-void BodyContactModel::AddReaction(const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const {
-  CheckSize(u, num_dofs(), "Gaps", "u");
-  if (r != nullptr) CheckSize(*r, num_pairs(), "GeneralisedReaction", "r");
+void BodyContactModel::AddReaction(const char* what, const Vec& u, const Vec* r, Vec* phi,
+                                   Vec* reaction) const {
+  CheckSize(u, num_dofs(), what, "u");
+  if (r != nullptr) CheckSize(*r, num_pairs(), what, "r");
   if (phi != nullptr) phi->resize(num_pairs());
   if (reaction != nullptr) reaction->setZero(num_dofs());
-  const Obstacle::Order order = reaction != nullptr ? Obstacle::Order::kGradient
-                                                    : Obstacle::Order::kValue;
+  const Obstacle::Order order =
+      reaction != nullptr ? Obstacle::Order::kGradient : Obstacle::Order::kValue;
   const int dim = body_->dim();
   ObstacleLocal local;
   for (int p = 0; p < num_pairs(); ++p) {
@@ -133,10 +135,10 @@ void BodyContactModel::AddReaction(const Vec& u, const Vec* r, Vec* phi, Vec* re
 // With r, also sum_p r_p hess phi_p(u): the node's free-dof block of r_p hess varphi for curved
 // obstacles, the curvature term of dF1/ddu in (29). Both patterns were fixed by the
 // constructor; the pairs are visited in that order.
-void BodyContactModel::AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobian,
+void BodyContactModel::AddDerivatives(const char* what, const Vec& u, const Vec* r, SpMat* jacobian,
                                       SpMat* curvature) const {
-  CheckSize(u, num_dofs(), "GapJacobian", "u");
-  if (r != nullptr) CheckSize(*r, num_pairs(), "GapCurvature", "r");
+  CheckSize(u, num_dofs(), what, "u");
+  if (r != nullptr) CheckSize(*r, num_pairs(), what, "r");
   const int dim = body_->dim();
   double* jacobian_values = nullptr;
   double* curvature_values = nullptr;
@@ -155,9 +157,10 @@ void BodyContactModel::AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobia
   for (int p = 0; p < num_pairs(); ++p) {
     const bool curved = obstacles_[pairs_[p].obstacle]->is_curved();
     if (jacobian == nullptr && !curved) continue;
-    EvaluatePair(p, u, curved && curvature != nullptr ? Obstacle::Order::kHessian
-                                                      : Obstacle::Order::kGradient,
-                 &local);
+    EvaluatePair(
+        p, u,
+        curved && curvature != nullptr ? Obstacle::Order::kHessian : Obstacle::Order::kGradient,
+        &local);
     const std::array<int, 3>& dofs = pair_dofs_[p];
     if (jacobian != nullptr) {
       for (int c = 0; c < dim; ++c) {
@@ -176,28 +179,29 @@ void BodyContactModel::AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobia
   }
 }
 
-void BodyContactModel::Gaps(const Vec& u, Vec* phi) const { AddReaction(u, nullptr, phi, nullptr); }
-
-void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
-  AddReaction(u, &r, nullptr, reaction);
+void BodyContactModel::Gaps(const Vec& u, Vec* phi) const {
+  AddReaction("Gaps", u, nullptr, phi, nullptr);
 }
 
-void BodyContactModel::GapsAndReaction(const Vec& u, const Vec& r, Vec* phi,
-                                       Vec* reaction) const {
-  AddReaction(u, &r, phi, reaction);
+void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
+  AddReaction("GeneralisedReaction", u, &r, nullptr, reaction);
+}
+
+void BodyContactModel::GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const {
+  AddReaction("GapsAndReaction", u, &r, phi, reaction);
 }
 
 void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
-  AddDerivatives(u, nullptr, jacobian, nullptr);
+  AddDerivatives("GapJacobian", u, nullptr, jacobian, nullptr);
 }
 
 void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const {
-  AddDerivatives(u, &r, nullptr, curvature);
+  AddDerivatives("GapCurvature", u, &r, nullptr, curvature);
 }
 
 void BodyContactModel::GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
                                       SpMat* curvature) const {
-  AddDerivatives(u, &r, jacobian, curvature);
+  AddDerivatives("GapDerivatives", u, &r, jacobian, curvature);
 }
 
 }  // namespace cb

@@ -44,8 +44,7 @@ class BodyContactModel final : public ContactModel {
   void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override;
   void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
   void GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const override;
-  void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
-                      SpMat* curvature) const override;
+  void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian, SpMat* curvature) const override;
   const Vec& load_pattern() const override { return load_; }
 
   const ElasticBody& body() const { return *body_; }
@@ -58,9 +57,11 @@ class BodyContactModel final : public ContactModel {
   std::vector<ContactPair> pairs_;
   // varphi of pair p at its node's current position, up to `order`.
   void EvaluatePair(int p, const Vec& u, Obstacle::Order order, ObstacleLocal* local) const;
-  // The pair loops behind the public functions (a null output is skipped).
-  void AddReaction(const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const;
-  void AddDerivatives(const Vec& u, const Vec* r, SpMat* jacobian, SpMat* curvature) const;
+  // The pair loops behind the public functions (a null output is skipped); `what` names the
+  // public function in size errors.
+  void AddReaction(const char* what, const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const;
+  void AddDerivatives(const char* what, const Vec& u, const Vec* r, SpMat* jacobian,
+                      SpMat* curvature) const;
 
   Vec load_;
   std::vector<Point> pair_reference_;          // X of each pair's node

@@ -120,8 +120,7 @@ class CondensedCholeskySolver final : public LinearSolver {
     }
     if (b.size() != jacobian_.rows()) {
       throw std::invalid_argument("cholmod: right-hand side has size " + std::to_string(b.size()) +
-                                  ", the matrix has " + std::to_string(jacobian_.rows()) +
-                                  " rows");
+                                  ", the matrix has " + std::to_string(jacobian_.rows()) + " rows");
     }
     rhs_ = b;  // b may alias *x
     SolveRefined(rhs_, x);
@@ -163,8 +162,8 @@ class CondensedCholeskySolver final : public LinearSolver {
     return a.rows() == jacobian_.rows() && a.nonZeros() == jacobian_.nonZeros() &&
            std::memcmp(a.outerIndexPtr(), jacobian_.outerIndexPtr(),
                        sizeof(int) * (a.outerSize() + 1)) == 0 &&
-           std::memcmp(a.innerIndexPtr(), jacobian_.innerIndexPtr(),
-                       sizeof(int) * a.nonZeros()) == 0;
+           std::memcmp(a.innerIndexPtr(), jacobian_.innerIndexPtr(), sizeof(int) * a.nonZeros()) ==
+               0;
   }
 
   // Classifies every stored entry of the Jacobian by block (slots into jacobian_'s values),
@@ -275,12 +274,12 @@ class CondensedCholeskySolver final : public LinearSolver {
     }
     const ScatterPattern kc(d_, d_, kc_entries);
     const SpMat& pattern = kc.pattern();
-    const bool same_kc = kc_lower_.rows() == d_ && kc_lower_.nonZeros() == pattern.nonZeros() &&
-                         std::equal(pattern.outerIndexPtr(), pattern.outerIndexPtr() + d_ + 1,
-                                    kc_lower_.outerIndexPtr()) &&
-                         std::equal(pattern.innerIndexPtr(),
-                                    pattern.innerIndexPtr() + pattern.nonZeros(),
-                                    kc_lower_.innerIndexPtr());
+    const bool same_kc =
+        kc_lower_.rows() == d_ && kc_lower_.nonZeros() == pattern.nonZeros() &&
+        std::equal(pattern.outerIndexPtr(), pattern.outerIndexPtr() + d_ + 1,
+                   kc_lower_.outerIndexPtr()) &&
+        std::equal(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros(),
+                   kc_lower_.innerIndexPtr());
     kc_ = pattern;
     kc_slots_ = kc.slots();
     if (!same_kc) {
@@ -431,7 +430,8 @@ class CondensedCholeskySolver final : public LinearSolver {
       for (int s = g_start_[p]; s < g_start_[p + 1]; ++s) {
         const double ws = w * val[g_src_[s]];
         const int cs = c_index_[g_col_[s]];
-        for (int t = g_start_[p]; t <= s; ++t) m_cc_(cs, c_index_[g_col_[t]]) += ws * val[g_src_[t]];
+        for (int t = g_start_[p]; t <= s; ++t)
+          m_cc_(cs, c_index_[g_col_[t]]) += ws * val[g_src_[t]];
       }
     }
     m_llt_.compute(m_cc_);
@@ -615,27 +615,15 @@ class CondensedCholeskySolver final : public LinearSolver {
 
   // x = Kc^-1 b (b: d x k), by the plain factor or by the contact-block factorisation.
   bool KcSolve(const double* b, int cols, double* x) {
-    cholmod_dense rhs{};
-    rhs.nrow = static_cast<std::size_t>(d_);
-    rhs.ncol = static_cast<std::size_t>(cols);
-    rhs.nzmax = rhs.nrow * rhs.ncol;
-    rhs.d = rhs.nrow;
-    rhs.x = const_cast<double*>(b);
-    rhs.xtype = CHOLMOD_REAL;
-    rhs.dtype = CHOLMOD_DOUBLE;
     const std::size_t size = sizeof(double) * static_cast<std::size_t>(d_) * cols;
     if (!schur_active_) {
-      if (!cholmod_solve2(CHOLMOD_A, factor_, &rhs, nullptr, &x1_, nullptr, &y_, &e_work_,
-                          &common_)) {
-        return false;
-      }
+      if (!Phase(CHOLMOD_A, factor_, b, cols, &x1_)) return false;
       std::memcpy(x, x1_->x, size);
       return true;
     }
     // P, L^-1; on the c part y_c -> L_cc^T M^-1 L_cc y_c; L^-T, P^T.
-    cholmod_factor* f = schur_factor_;
-    if (!cholmod_solve2(CHOLMOD_P, f, &rhs, nullptr, &x1_, nullptr, &y_, &e_work_, &common_) ||
-        !cholmod_solve2(CHOLMOD_L, f, x1_, nullptr, &x2_, nullptr, &y_, &e_work_, &common_)) {
+    if (!Phase(CHOLMOD_P, schur_factor_, b, cols, &x1_) ||
+        !Phase(CHOLMOD_L, schur_factor_, static_cast<const double*>(x1_->x), cols, &x2_)) {
       return false;
     }
     const int nc_dofs = static_cast<int>(c_dofs_.size());
@@ -647,15 +635,16 @@ class CondensedCholeskySolver final : public LinearSolver {
       m_llt_.solveInPlace(work_c_);
       ycv.noalias() = l_cc_.transpose().triangularView<Eigen::Upper>() * work_c_;
     }
-    if (!cholmod_solve2(CHOLMOD_Lt, f, x2_, nullptr, &x1_, nullptr, &y_, &e_work_, &common_) ||
-        !cholmod_solve2(CHOLMOD_Pt, f, x1_, nullptr, &x2_, nullptr, &y_, &e_work_, &common_)) {
+    if (!Phase(CHOLMOD_Lt, schur_factor_, static_cast<const double*>(x2_->x), cols, &x1_) ||
+        !Phase(CHOLMOD_Pt, schur_factor_, static_cast<const double*>(x1_->x), cols, &x2_)) {
       return false;
     }
     std::memcpy(x, x2_->x, size);
     return true;
   }
-  // One CHOLMOD solve phase (sys) of the contact-block factor on cols columns.
-  bool Phase(int sys, const double* in, int cols, cholmod_dense** out) {
+  // One CHOLMOD solve phase (sys) of `factor` on the d x cols column-major block `in`, which
+  // CHOLMOD reads through a view (no copy).
+  bool Phase(int sys, cholmod_factor* factor, const double* in, int cols, cholmod_dense** out) {
     cholmod_dense rhs{};
     rhs.nrow = static_cast<std::size_t>(d_);
     rhs.ncol = static_cast<std::size_t>(cols);
@@ -664,13 +653,13 @@ class CondensedCholeskySolver final : public LinearSolver {
     rhs.x = const_cast<double*>(in);
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
-    return cholmod_solve2(sys, schur_factor_, &rhs, nullptr, out, nullptr, &y_, &e_work_,
-                          &common_) != 0;
+    return cholmod_solve2(sys, factor, &rhs, nullptr, out, nullptr, &y_, &e_work_, &common_) != 0;
   }
   // Lt^-1 P b (permuted order): P, L^-1, then y_c -> L_cc y_c.
   bool Forward(const Mat& b, Mat* out) {
-    if (!Phase(CHOLMOD_P, b.data(), static_cast<int>(b.cols()), &x1_)) return false;
-    if (!Phase(CHOLMOD_L, static_cast<const double*>(x1_->x), static_cast<int>(b.cols()), &x2_)) {
+    if (!Phase(CHOLMOD_P, schur_factor_, b.data(), static_cast<int>(b.cols()), &x1_)) return false;
+    if (!Phase(CHOLMOD_L, schur_factor_, static_cast<const double*>(x1_->x),
+               static_cast<int>(b.cols()), &x2_)) {
       return false;
     }
     out->resize(d_, b.cols());
@@ -692,8 +681,9 @@ class CondensedCholeskySolver final : public LinearSolver {
     const int nc_dofs = static_cast<int>(c_dofs_.size());
     auto tail = w.bottomRows(nc_dofs);
     tail = (l_cc_.transpose().triangularView<Eigen::Upper>() * tail).eval();
-    if (!Phase(CHOLMOD_Lt, w.data(), static_cast<int>(w.cols()), &x1_)) return false;
-    if (!Phase(CHOLMOD_Pt, static_cast<const double*>(x1_->x), static_cast<int>(w.cols()), &x2_)) {
+    if (!Phase(CHOLMOD_Lt, schur_factor_, w.data(), static_cast<int>(w.cols()), &x1_)) return false;
+    if (!Phase(CHOLMOD_Pt, schur_factor_, static_cast<const double*>(x1_->x),
+               static_cast<int>(w.cols()), &x2_)) {
       return false;
     }
     out->resize(d_, w.cols());
