@@ -102,13 +102,13 @@ StepProblem ReplayStep(const Reference& ref, int k) {
   return StepProblem{ref.problem.model.get(), base, constraint, ref.problem.scales};
 }
 
-StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any previous) {
+StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any warm_state) {
   StartPoint start;
   start.kind = kind;
   start.r = k == 1 ? Vec::Zero(ref.problem.model->num_pairs()) : ref.path.states[k - 2].r;
   start.du = ref.path.predictions[k - 1].du;
   start.dlambda = ref.path.predictions[k - 1].dlambda;
-  start.previous = std::move(previous);
+  start.warm_state = std::move(warm_state);
   return start;
 }
 
@@ -134,18 +134,18 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     controls.time_limit_s = kTimeLimitS;
 
     // Step k - 1: the pattern analysis and the backend state a warm start of step k may reuse.
-    std::any previous;
+    std::any warm_state;
     {
       const StepProblem step = ReplayStep(*ref, k - 1);
       const StepResult r =
           formulation->Solve(step, ReplayStart(*ref, k - 1, start_kind, {}), controls);
       if (Judge(step, r.point, kTolerance).verified && !Reversed(*ref, k - 1, r.point)) {
-        previous = r.backend_state;
+        warm_state = r.warm_state;
       }
     }
 
     const StepProblem step = ReplayStep(*ref, k);
-    const StartPoint start = ReplayStart(*ref, k, start_kind, previous);
+    const StartPoint start = ReplayStart(*ref, k, start_kind, warm_state);
     StepResult result;
     Verdict verdict;
     for (auto _ : state) {

@@ -56,7 +56,7 @@
 //       Each subproblem is warm started from the previous one with mu_init = scholtes_mu_init
 //       (1e-9; the previous answer is at most a factor 10 in t away).
 // The cold start is g^ = 1, r^ = -1, du = 0 (see IpoptMpcc::MakeStart); the warm start is the
-// previous primal point (38)-(41) and the previous step's multipliers from backend_state.
+// previous primal point (38)-(41) and the previous step's multipliers from warm_state.
 #include "formulations/ipopt/ipopt.h"
 
 #include <algorithm>
@@ -204,7 +204,7 @@ struct PrimalDual {
   bool has_duals = false;
 };
 
-// What ipopt-energy / ipopt-mpcc leave in StepResult::backend_state for the next step's warm
+// What ipopt-energy / ipopt-mpcc leave in StepResult::warm_state for the next step's warm
 // start: the final primal-dual point of the NLP, in its own scaled variables.
 struct IpoptWarmState {
   std::string formulation;  // "ipopt-energy" or "ipopt-mpcc:<reformulation>"
@@ -444,7 +444,7 @@ void RecordStatus(Ipopt::ApplicationReturnStatus status, const TnlpAdapter& adap
 
 const IpoptWarmState* PreviousState(const StartPoint& start, const std::string& formulation, int n,
                                     int m) {
-  const IpoptWarmState* state = std::any_cast<IpoptWarmState>(&start.previous);
+  const IpoptWarmState* state = std::any_cast<IpoptWarmState>(&start.warm_state);
   if (state == nullptr || state->formulation != formulation || !state->point.has_duals ||
       state->point.x.size() != n || state->point.y.size() != m) {
     return nullptr;
@@ -534,7 +534,7 @@ class IpoptEnergy final : public Formulation {
     result->point.r = adapter->finalized() ? Vec(-force * adapter->solution().y) : Vec::Zero(nc);
     result->point.dlambda = step.constraint.target - step.base.lambda;
     if (adapter->finalized()) {
-      result->backend_state = IpoptWarmState{name(), step.constraint.kind, adapter->solution()};
+      result->warm_state = IpoptWarmState{name(), step.constraint.kind, adapter->solution()};
     }
   }
 
@@ -605,7 +605,7 @@ class IpoptMpcc final : public Formulation {
   //   method must start; the projection (0, 0) would sit on both bounds), Ipopt's own duals.
   // Warm: (38)-(41): du0, dlambda0 = the predicted increment fitted to the constraint,
   //   r^0 = r^k / R, g^0 = -phi(u^k + du0) / L (Ipopt pushes it inside its bounds by warm_push);
-  //   duals = the previous step's final multipliers (backend_state) when they are of this
+  //   duals = the previous step's final multipliers (warm_state) when they are of this
   //   formulation and size, else y = 0 and bound multipliers z_g = -w r^0, z_r = w g^0 (the
   //   penalty's exact duals at a complementary point), floored by warm_push.
   PrimalDual MakeStart(const StepProblem& step, const StartPoint& start, const MpccNlp& nlp,
@@ -749,7 +749,7 @@ class IpoptMpcc final : public Formulation {
     result->point.r = force * x.segment(nlp.ix_r(), nc);
     result->point.dlambda = x[nlp.ix_dlambda()];
     if (have_solution) {
-      result->backend_state = IpoptWarmState{StateName(), step.constraint.kind, last};
+      result->warm_state = IpoptWarmState{StateName(), step.constraint.kind, last};
     }
   }
 

@@ -315,7 +315,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     return summary;
   }
   double theta = nominal;
-  std::any previous_backend;
+  std::any previous_warm_state;
   // Stability of the current state and the load increment that led to it (for limit points).
   int stability = watch_stability ? UnstableModes(model, scales, state) : -1;
   double last_dlambda = 0.0;
@@ -348,7 +348,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         start.dlambda = previous_dlambda * scale;
       }
       start.r = base.r;  // (40)
-      start.previous = previous_backend;
+      start.warm_state = previous_warm_state;
 
       attempt = StepAttempt();
       attempt.step = step;
@@ -520,7 +520,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       if (observer != nullptr) observer->OnCriticalPoint(point);
       if (point.switched) pending_switch = point;
     }
-    previous_backend = attempt.result.backend_state;
+    previous_warm_state = attempt.result.warm_state;
     last_dlambda = attempt.result.point.dlambda;
     last_kinks = attempt.kinks;
     stability = attempt.stability;
@@ -532,7 +532,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       // The next step starts from the bifurcation point, not from the state just accepted
       // past it on the branch already traced.
       stability = UnstableModes(model, scales, pending_switch->state);
-      previous_backend = std::any();
+      previous_warm_state = std::any();
     }
     if (options.controls.interrupted && options.controls.interrupted()) {
       summary.status = Status::kStoppedByCaller;

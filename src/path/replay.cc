@@ -26,7 +26,7 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
   summary.final_state = initial;
   const int steps = static_cast<int>(reference.states.size());
   const double w = options.lambda_weight;
-  std::any previous_backend;
+  std::any previous_warm_state;
   for (int k = 1; k <= steps; ++k) {
     const State& base = k == 1 ? initial : reference.states[k - 2];
     const ConstraintKind kind = reference.kinds[k - 1];
@@ -39,7 +39,7 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
     StartPoint start;
     start.kind = options.start;
     start.r = base.r;
-    start.previous = previous_backend;
+    start.warm_state = previous_warm_state;
     start.du = reference.predictions[k - 1].du;
     start.dlambda = reference.predictions[k - 1].dlambda;
 
@@ -65,9 +65,9 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
     if (attempt.accepted) {
       ++summary.accepted_steps;
       summary.final_state = attempt.state;
-      previous_backend = attempt.result.backend_state;
+      previous_warm_state = attempt.result.warm_state;
     } else {
-      previous_backend.reset();  // a failed step's backend state is no start for the next one
+      previous_warm_state.reset();  // a failed step's backend state is no start for the next one
     }
     if (attempt.result.status == Status::kStoppedByCaller ||
         (options.controls.interrupted && options.controls.interrupted())) {

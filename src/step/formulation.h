@@ -20,14 +20,14 @@ const char* ToString(StartKind kind);
 // What the path driver hands a formulation as its start.
 //  kWarm: `du`, `dlambda` the predicted increment (the previous step's increment scaled to this
 //         step's size, or the tangent predictor on the first step), `r` the reactions of the
-//         known state; `previous` the backend state of the previous step's result, if any.
+//         known state; `warm_state` the previous step's StepResult::warm_state, if any.
 //  kCold: a fixed start that does not use the previous step (each formulation documents it).
 struct StartPoint {
   StartKind kind = StartKind::kWarm;
   Vec du;
   double dlambda = 0.0;
   Vec r;
-  std::any previous;
+  std::any warm_state;
 };
 
 struct SolveCounts {
@@ -54,13 +54,13 @@ struct StepResult {
   double time_s = 0.0;  // wall time of the solve alone
   std::vector<IterationRecord> history;
   std::map<std::string, std::string> details;  // backend specifics (raw return codes, ...)
-  std::any backend_state;                      // what a warm start of the next step may reuse
+  std::any warm_state;                         // what a warm start of the next step may reuse
 };
 
 // Limits and hooks the harness sets for every formulation alike.
 struct SolveControls {
-  double time_limit_s = 0.0;           // 0: none
-  std::function<bool()> interrupted;   // polled between iterations; true stops the solve
+  double time_limit_s = 0.0;          // 0: none
+  std::function<bool()> interrupted;  // polled between iterations; true stops the solve
 };
 
 class Formulation {
