@@ -138,6 +138,11 @@ struct JacobianCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const JacobianCase& c, std::ostream* out) {
+  *out << "eta " << c.eta << ", " << ToString(c.kind);
+}
+
 class ImplicitFbJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
 
 TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {

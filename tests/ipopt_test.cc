@@ -138,6 +138,11 @@ struct MpccCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const MpccCase& c, std::ostream* out) {
+  *out << ToString(c.reformulation) << ", " << ToString(c.kind);
+}
+
 class IpoptMpccNlpTest : public ::testing::TestWithParam<MpccCase> {};
 
 TEST_P(IpoptMpccNlpTest, DerivativesMatchFiniteDifferencesOnACurvedObstacle) {
@@ -401,6 +406,10 @@ struct PathCase {
   std::string reformulation;
   StartKind start;
 };
+
+void PrintTo(const PathCase& c, std::ostream* out) {
+  *out << c.problem << ", " << c.reformulation << " (" << ToString(c.start) << " start)";
+}
 
 class IpoptMpccPathTest : public ::testing::TestWithParam<PathCase> {};
 

@@ -300,6 +300,11 @@ struct EnergyBlockCase {
   double agreement;  // relative, in u and in r
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const EnergyBlockCase& c, std::ostream* out) {
+  *out << c.algorithm << ", maxeval " << c.maxeval << ", agreement " << c.agreement;
+}
+
 class NloptEnergyBlockTest : public ::testing::TestWithParam<EnergyBlockCase> {};
 
 TEST_P(NloptEnergyBlockTest, AgreesWithImplicitFb) {

@@ -86,6 +86,11 @@ struct JacobianCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const JacobianCase& c, std::ostream* out) {
+  *out << (c.function == ComplementarityFunction::kMin ? "min" : "fb") << ", " << ToString(c.kind);
+}
+
 class NonsmoothJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
 
 StepProblem RandomStep(const Problem& p, ConstraintKind kind, std::mt19937* rng) {
@@ -305,6 +310,16 @@ TEST(NonsmoothTest, RestartTurnsThePathOntoTheFloorWhereThePredictorPointsIntoIt
   }
 }
 
+}  // namespace
+
+// ArchCurvedTest's parameter readable in GoogleTest's messages: found by argument-dependent
+// lookup, so in the enum's namespace cb.
+void PrintTo(ComplementarityFunction function, std::ostream* out) {
+  *out << (function == ComplementarityFunction::kMin ? "min" : "fb");
+}
+
+namespace {
+
 // P3: the first 50 arc-length steps at the report's theta, every step and kink verified, with
 // the counts filled.
 class ArchCurvedTest : public ::testing::TestWithParam<ComplementarityFunction> {};
@@ -380,6 +395,11 @@ struct SolverCase {
   std::string solver;
   std::string fixture;
 };
+
+void PrintTo(const SolverCase& c, std::ostream* out) {
+  *out << (c.function == ComplementarityFunction::kMin ? "active-set" : "nonsmooth-fb") << ", "
+       << c.solver << ", " << c.fixture;
+}
 
 class NonsmoothSolverFixtureTest : public ::testing::TestWithParam<SolverCase> {};
 
