@@ -23,7 +23,7 @@ Vec RandomVector(int n, unsigned seed) {
 }
 
 TEST(ComplementarityModelTest, LcpMapsOntoTheContactModel) {
-  const auto model = testing::Lcp4Model();
+  const auto model = fixtures::Lcp4Model();
   EXPECT_EQ(model->num_dofs(), 4);
   EXPECT_EQ(model->num_pairs(), 4);
   EXPECT_TRUE(model->is_linear());
@@ -54,13 +54,13 @@ TEST(ComplementarityModelTest, LcpMapsOntoTheContactModel) {
 }
 
 TEST(ComplementarityModelTest, SymmetricLcpHasAnEnergyWhoseGradientIsTheInternalForce) {
-  const auto model = testing::Lcp2Model();
+  const auto model = fixtures::Lcp2Model();
   ASSERT_TRUE(model->has_energy());
   const Vec z = RandomVector(2, 3);
   Vec w;
   model->InternalForce(z, &w);
   const Vec fd =
-      testing::FiniteDifferenceGradient([&](const Vec& y) { return model->Energy(y); }, z);
+      fd_check::FiniteDifferenceGradient([&](const Vec& y) { return model->Energy(y); }, z);
   EXPECT_DERIVATIVE_NEAR(Mat(w), Mat(fd), 1e-8);
   // 1/2 z^T M z + q^T z at z = (1, 0): 1 - 5.
   Vec e(2);
@@ -69,7 +69,7 @@ TEST(ComplementarityModelTest, SymmetricLcpHasAnEnergyWhoseGradientIsTheInternal
 }
 
 TEST(ComplementarityModelTest, NcpStiffnessIsTheJacobianOfFWithAFixedPattern) {
-  const auto model = testing::KojimaShindoModel();
+  const auto model = fixtures::KojimaShindoModel();
   EXPECT_FALSE(model->has_energy());
   EXPECT_FALSE(model->is_linear());
   for (unsigned seed : {4u, 5u}) {
@@ -82,7 +82,7 @@ TEST(ComplementarityModelTest, NcpStiffnessIsTheJacobianOfFWithAFixedPattern) {
       model->InternalForce(y, &v);
       return v;
     };
-    EXPECT_DERIVATIVE_NEAR(Mat(k), testing::FiniteDifferenceJacobian(f, z), 1e-8);
+    EXPECT_DERIVATIVE_NEAR(Mat(k), fd_check::FiniteDifferenceJacobian(f, z), 1e-8);
   }
   // The gap Jacobian against differences of the gaps.
   const Vec z = RandomVector(4, 6);
@@ -93,13 +93,13 @@ TEST(ComplementarityModelTest, NcpStiffnessIsTheJacobianOfFWithAFixedPattern) {
     model->Gaps(y, &phi);
     return phi;
   };
-  EXPECT_DERIVATIVE_NEAR(Mat(g), testing::FiniteDifferenceJacobian(gaps, z), 1e-8);
+  EXPECT_DERIVATIVE_NEAR(Mat(g), fd_check::FiniteDifferenceJacobian(gaps, z), 1e-8);
 }
 
 TEST(ComplementarityModelTest, VerdictIsTheNaturalResidualWithUnitScales) {
   // With lambda = 0 and r = -F(z), (29) holds and comp_res = ||min(z, F(z))||_inf.
-  const auto model = testing::KojimaShindoModel();
-  const Problem p = testing::ComplementarityProblem("ks", model);
+  const auto model = fixtures::KojimaShindoModel();
+  const Problem p = fixtures::ComplementarityProblem("ks", model);
   const Vec z = RandomVector(4, 7).cwiseAbs();
   Vec w;
   model->InternalForce(z, &w);
@@ -143,7 +143,7 @@ TEST(ComplementarityModelTest, ValidatesItsInputsNamingTheField) {
   ExpectRejects([] { ComplementarityModel::Ncp(0, {}, {}); }, "n");
   ExpectRejects([] { ComplementarityModel::Ncp(2, {}, [](const Vec&, Mat*) {}); }, "F");
   ExpectRejects([] { ComplementarityModel::Ncp(2, [](const Vec&, Vec*) {}, {}); }, "Jacobian");
-  const auto model = testing::Lcp2Model();
+  const auto model = fixtures::Lcp2Model();
   Vec w;
   ExpectRejects([&] { model->InternalForce(Vec::Zero(3), &w); }, "u");
   // A callback returning the wrong size is reported, not read out of bounds.

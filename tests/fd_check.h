@@ -10,7 +10,7 @@
 
 #include "core/types.h"
 
-namespace cb::testing {
+namespace cb::fd_check {
 
 // Central-difference Jacobian of f: R^n -> R^m at x.
 inline Mat FiniteDifferenceJacobian(const std::function<Vec(const Vec&)>& f, const Vec& x,
@@ -43,7 +43,7 @@ inline double RelativeError(const Mat& a, const Mat& b) {
   return (a - b).cwiseAbs().maxCoeff() / scale;
 }
 
-}  // namespace cb::testing
+}  // namespace cb::fd_check
 
 // Asserts that analytic `actual` matches finite-difference `expected` to relative `tol`.
 #define EXPECT_DERIVATIVE_NEAR(actual, expected, tol)                          \
@@ -52,7 +52,7 @@ inline double RelativeError(const Mat& a, const Mat& b) {
     const ::cb::Mat cb_expected_ = (expected);                                 \
     ASSERT_EQ(cb_actual_.rows(), cb_expected_.rows());                         \
     ASSERT_EQ(cb_actual_.cols(), cb_expected_.cols());                         \
-    EXPECT_LT(::cb::testing::RelativeError(cb_actual_, cb_expected_), (tol))   \
+    EXPECT_LT(::cb::fd_check::RelativeError(cb_actual_, cb_expected_), (tol))  \
         << "analytic:\n"                                                       \
         << cb_actual_.topLeftCorner(std::min<long>(6, cb_actual_.rows()),      \
                                     std::min<long>(6, cb_actual_.cols()))      \

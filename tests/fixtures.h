@@ -18,7 +18,7 @@
 #include "path/path.h"
 #include "problems/problem.h"
 
-namespace cb::testing {
+namespace cb::fixtures {
 
 struct Fixture {
   std::string name;  // letters, digits and '_' (a test-name part)
@@ -334,4 +334,4 @@ inline StepConstraint ConstraintOf(ConstraintKind kind, int nc) {
   return {};
 }
 
-}  // namespace cb::testing
+}  // namespace cb::fixtures

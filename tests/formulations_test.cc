@@ -26,9 +26,9 @@
 namespace cb {
 namespace {
 
-using testing::FindFixture;
-using testing::Fixture;
-using testing::RelativelyClose;
+using fixtures::FindFixture;
+using fixtures::Fixture;
+using fixtures::RelativelyClose;
 
 struct Case {
   std::string formulation;
@@ -44,7 +44,7 @@ void PrintTo(const Case& c, std::ostream* out) {
 std::vector<Case> AllCases() {
   std::vector<Case> cases;
   for (const FormulationInfo& info : FormulationRegistry()) {
-    for (const Fixture& f : testing::Fixtures()) {
+    for (const Fixture& f : fixtures::Fixtures()) {
       cases.push_back({info.name, f.name, StartKind::kWarm});
       if (f.cold_start) cases.push_back({info.name, f.name, StartKind::kCold});
     }
@@ -243,7 +243,7 @@ INSTANTIATE_TEST_SUITE_P(FormulationByFixture, FormulationsTest, ::testing::Valu
 
 // The fixtures' own checks can fail: a wrong state is rejected by each of them.
 TEST(FixturesTest, EveryCheckRejectsAWrongAnswer) {
-  for (const Fixture& f : testing::Fixtures()) {
+  for (const Fixture& f : fixtures::Fixtures()) {
     State wrong = f.base;
     wrong.u = Vec::Constant(f.problem.model->num_dofs(), 0.123);
     wrong.r = Vec::Constant(f.problem.model->num_pairs(), -0.456);

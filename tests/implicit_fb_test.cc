@@ -138,6 +138,11 @@ struct JacobianCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const JacobianCase& c, std::ostream* out) {
+  *out << "eta " << c.eta << ", " << ToString(c.kind);
+}
+
 class ImplicitFbJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
 
 TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
@@ -155,7 +160,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(rng));
   base.lambda = 3.0;
-  const StepConstraint constraint = testing::ConstraintOf(c.kind, nc);
+  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, nc);
   StepProblem step{p.model.get(), base, constraint, {0.1, 2.0}};
   ImplicitFbSystem system(step, EtaEquation{static_cast<EtaCase>(c.eta), 0.8});
   const ImplicitFbLayout& l = system.layout();
@@ -170,7 +175,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
     system.Residual(y, &f);
     return f;
   };
-  Mat fd = testing::FiniteDifferenceJacobian(residual, x);
+  Mat fd = fd_check::FiniteDifferenceJacobian(residual, x);
   if (c.eta == 4) {
     // rho fixed at 0: F3 is differentiable in g and r away from a = b = 0 but not in rho
     // (|rho| kink); compare every column but rho's.
@@ -180,7 +185,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   // A second evaluation elsewhere reuses the pattern and still matches.
   x.segment(0, d) *= -0.5;
   system.Jacobian(x, &jac);
-  fd = testing::FiniteDifferenceJacobian(residual, x);
+  fd = fd_check::FiniteDifferenceJacobian(residual, x);
   if (c.eta == 4) fd.col(l.rho()) = Mat(jac).col(l.rho());
   EXPECT_DERIVATIVE_NEAR(Mat(jac), fd, 1e-6);
 }
@@ -347,7 +352,7 @@ TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
   for (ConstraintKind kind : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
                               ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
     SCOPED_TRACE(ToString(kind));
-    StepProblem step{p.model.get(), base, testing::ConstraintOf(kind, nc), {0.1, 2.0}};
+    StepProblem step{p.model.get(), base, fixtures::ConstraintOf(kind, nc), {0.1, 2.0}};
     StartPoint warm;
     warm.du = Vec::Constant(d, 0.001);
     warm.dlambda = 0.05;

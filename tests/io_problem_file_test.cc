@@ -55,10 +55,10 @@ void ExpectSameModel(const ContactModel& a, const ContactModel& b, const Vec& u,
   Vec fa, fb, pa, pb;
   a.InternalForce(u, &fa);
   b.InternalForce(u, &fb);
-  EXPECT_TRUE(testing::RelativelyClose(fb, fa, 1e-12, 1e-12, what + " internal force"));
+  EXPECT_TRUE(fixtures::RelativelyClose(fb, fa, 1e-12, 1e-12, what + " internal force"));
   a.Gaps(u, &pa);
   b.Gaps(u, &pb);
-  EXPECT_TRUE(testing::RelativelyClose(pb, pa, 1e-12, 1e-12, what + " gaps"));
+  EXPECT_TRUE(fixtures::RelativelyClose(pb, pa, 1e-12, 1e-12, what + " gaps"));
   SpMat ka, kb, ga, gb;
   a.Stiffness(u, &ka);
   b.Stiffness(u, &kb);
@@ -110,7 +110,7 @@ TEST(IoProblemFileTest, EveryRegistryProblemRoundTrips) {
 }
 
 TEST(IoProblemFileTest, LcpRoundTrips) {
-  const Problem p = testing::ComplementarityProblem("lcp4", testing::Lcp4Model());
+  const Problem p = fixtures::ComplementarityProblem("lcp4", fixtures::Lcp4Model());
   const Problem q = io::ParseProblemFile(io::ProblemToJson(p), "lcp4.json", ".");
   EXPECT_EQ(q.body, nullptr);
   EXPECT_EQ(q.loading, LoadingKind::kFixedLoad);

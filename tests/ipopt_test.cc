@@ -55,7 +55,7 @@ void CheckDerivatives(IpoptNlp& nlp, const Vec& x, double sigma, const Vec& y, d
     EXPECT_TRUE(nlp.Objective(z, &f));
     return f;
   };
-  const Vec fd_grad = testing::FiniteDifferenceGradient(objective, x);
+  const Vec fd_grad = fd_check::FiniteDifferenceGradient(objective, x);
   if (fd_grad.lpNorm<Eigen::Infinity>() > 0.0 || grad.lpNorm<Eigen::Infinity>() > 0.0) {
     EXPECT_DERIVATIVE_NEAR(Mat(grad), Mat(fd_grad), tol);
   }
@@ -67,7 +67,7 @@ void CheckDerivatives(IpoptNlp& nlp, const Vec& x, double sigma, const Vec& y, d
     EXPECT_TRUE(nlp.Constraints(z, &c));
     return c;
   };
-  EXPECT_DERIVATIVE_NEAR(jac, testing::FiniteDifferenceJacobian(constraints, x), tol);
+  EXPECT_DERIVATIVE_NEAR(jac, fd_check::FiniteDifferenceJacobian(constraints, x), tol);
   // Hessian of sigma f + y^T c: differences of its gradient, which uses only first derivatives.
   ASSERT_TRUE(nlp.HessianValues(x, sigma, y, &values));
   const Mat hess = Dense(n, n, nlp.hessian_rows(), nlp.hessian_cols(), values, true);
@@ -78,7 +78,7 @@ void CheckDerivatives(IpoptNlp& nlp, const Vec& x, double sigma, const Vec& y, d
     const Mat j = Dense(m, n, nlp.jacobian_rows(), nlp.jacobian_cols(), jv, false);
     return Vec(sigma * g + j.transpose() * y);
   };
-  const Mat fd_hess = testing::FiniteDifferenceJacobian(lagrangian_gradient, x);
+  const Mat fd_hess = fd_check::FiniteDifferenceJacobian(lagrangian_gradient, x);
   EXPECT_DERIVATIVE_NEAR(hess, fd_hess, tol);
   for (const Block& b : hessian_blocks) {
     const Mat fd_block = fd_hess.block(b.row, b.col, b.rows, b.cols);
@@ -138,6 +138,11 @@ struct MpccCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const MpccCase& c, std::ostream* out) {
+  *out << ToString(c.reformulation) << ", " << ToString(c.kind);
+}
+
 class IpoptMpccNlpTest : public ::testing::TestWithParam<MpccCase> {};
 
 TEST_P(IpoptMpccNlpTest, DerivativesMatchFiniteDifferencesOnACurvedObstacle) {
@@ -146,7 +151,7 @@ TEST_P(IpoptMpccNlpTest, DerivativesMatchFiniteDifferencesOnACurvedObstacle) {
   const int nc = p.model->num_pairs();
   std::mt19937 rng(17 + static_cast<int>(c.kind));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const StepConstraint constraint = testing::ConstraintOf(c.kind, nc);
+  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, nc);
   StepProblem step{p.model.get(), RandomBase(p, &rng), constraint, {0.1, 2.0}};
   MpccNlp nlp(step, c.reformulation, 2.5);
   nlp.set_relaxation(0.01);
@@ -401,6 +406,10 @@ struct PathCase {
   std::string reformulation;
   StartKind start;
 };
+
+void PrintTo(const PathCase& c, std::ostream* out) {
+  *out << c.problem << ", " << c.reformulation << " (" << ToString(c.start) << " start)";
+}
 
 class IpoptMpccPathTest : public ::testing::TestWithParam<PathCase> {};
 

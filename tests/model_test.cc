@@ -26,8 +26,8 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::FiniteDifferenceGradient;
-using ::cb::testing::FiniteDifferenceJacobian;
+using ::cb::fd_check::FiniteDifferenceGradient;
+using ::cb::fd_check::FiniteDifferenceJacobian;
 
 constexpr double kFdTol = 1e-6;
 

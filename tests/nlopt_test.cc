@@ -52,7 +52,7 @@ TEST(NloptDerivativeTest, MeritGradientMatchesFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     testing::ConstraintOf(kind, p.model->num_pairs()),
+                     fixtures::ConstraintOf(kind, p.model->num_pairs()),
                      {0.1, 2.0}};
     NloptMeritObjective objective(step, EtaEquation{EtaCase::kCase1, 0.8}, 1.0);
     Vec x(objective.size());
@@ -61,7 +61,7 @@ TEST(NloptDerivativeTest, MeritGradientMatchesFiniteDifferences) {
     x[objective.layout().rho()] = 0.3;
     Vec gradient;
     objective.Evaluate(x, &gradient);
-    const Vec fd = testing::FiniteDifferenceGradient(
+    const Vec fd = fd_check::FiniteDifferenceGradient(
         [&](const Vec& y) { return objective.Evaluate(y, nullptr); }, x);
     EXPECT_DERIVATIVE_NEAR(gradient, fd, 1e-6);
     // NLopt's variables y = sqrt(s) x: M(y) = s m(x), and its gradient matches differences too.
@@ -71,7 +71,7 @@ TEST(NloptDerivativeTest, MeritGradientMatchesFiniteDifferences) {
     Vec scaled_gradient;
     const double value = scaled.Evaluate(y, &scaled_gradient);
     EXPECT_NEAR(value, 1e4 * objective.Evaluate(x, nullptr), 1e-12 * value);
-    const Vec fd_y = testing::FiniteDifferenceGradient(
+    const Vec fd_y = fd_check::FiniteDifferenceGradient(
         [&](const Vec& v) { return scaled.Evaluate(v, nullptr); }, y);
     EXPECT_DERIVATIVE_NEAR(scaled_gradient, fd_y, 1e-6);
   }
@@ -91,14 +91,14 @@ TEST(NloptDerivativeTest, EnergyObjectiveAndGapConstraintsMatchFiniteDifferences
     for (int i = 0; i < d; ++i) y[i] = 0.5 * unit(rng);
     Vec gradient;
     problem.Objective(y, &gradient);
-    const Vec fd = testing::FiniteDifferenceGradient(
+    const Vec fd = fd_check::FiniteDifferenceGradient(
         [&](const Vec& v) { return problem.Objective(v, nullptr); }, y);
     EXPECT_DERIVATIVE_NEAR(gradient, fd, 1e-6);
 
     Vec values(nc);
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dense(nc, d);
     problem.Constraints(y, values.data(), dense.data());
-    const Mat fd_c = testing::FiniteDifferenceJacobian(
+    const Mat fd_c = fd_check::FiniteDifferenceJacobian(
         [&](const Vec& v) {
           Vec c(nc);
           problem.Constraints(v, c.data(), nullptr);
@@ -122,7 +122,7 @@ TEST(NloptDerivativeTest, MpccObjectiveAndEqualitiesMatchFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     testing::ConstraintOf(kind, p.model->num_pairs()),
+                     fixtures::ConstraintOf(kind, p.model->num_pairs()),
                      {0.1, 2.0}};
     NloptMpccProblem problem(step, 2.5);
     const int n = problem.size();
@@ -132,14 +132,14 @@ TEST(NloptDerivativeTest, MpccObjectiveAndEqualitiesMatchFiniteDifferences) {
     z.head(d) *= 0.05;
     Vec gradient;
     problem.Objective(z, &gradient);
-    const Vec fd = testing::FiniteDifferenceGradient(
+    const Vec fd = fd_check::FiniteDifferenceGradient(
         [&](const Vec& v) { return problem.Objective(v, nullptr); }, z);
     EXPECT_DERIVATIVE_NEAR(gradient, fd, 1e-6);
 
     Vec values(m);
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dense(m, n);
     problem.Equalities(z, values.data(), dense.data());
-    const Mat fd_h = testing::FiniteDifferenceJacobian(
+    const Mat fd_h = fd_check::FiniteDifferenceJacobian(
         [&](const Vec& v) {
           Vec h(m);
           problem.Equalities(v, h.data(), nullptr);
@@ -299,6 +299,11 @@ struct EnergyBlockCase {
   int maxeval;
   double agreement;  // relative, in u and in r
 };
+
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const EnergyBlockCase& c, std::ostream* out) {
+  *out << c.algorithm << ", maxeval " << c.maxeval << ", agreement " << c.agreement;
+}
 
 class NloptEnergyBlockTest : public ::testing::TestWithParam<EnergyBlockCase> {};
 

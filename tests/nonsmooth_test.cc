@@ -86,6 +86,11 @@ struct JacobianCase {
   ConstraintKind kind;
 };
 
+// Readable parameters in GoogleTest's messages.
+void PrintTo(const JacobianCase& c, std::ostream* out) {
+  *out << (c.function == ComplementarityFunction::kMin ? "min" : "fb") << ", " << ToString(c.kind);
+}
+
 class NonsmoothJacobianTest : public ::testing::TestWithParam<JacobianCase> {};
 
 StepProblem RandomStep(const Problem& p, ConstraintKind kind, std::mt19937* rng) {
@@ -96,7 +101,7 @@ StepProblem RandomStep(const Problem& p, ConstraintKind kind, std::mt19937* rng)
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(*rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(*rng));
   base.lambda = 3.0;
-  return {p.model.get(), base, testing::ConstraintOf(kind, nc), {0.1, 2.0}};
+  return {p.model.get(), base, fixtures::ConstraintOf(kind, nc), {0.1, 2.0}};
 }
 
 TEST_P(NonsmoothJacobianTest, MatchesFiniteDifferencesAwayFromKinks) {
@@ -119,7 +124,7 @@ TEST_P(NonsmoothJacobianTest, MatchesFiniteDifferencesAwayFromKinks) {
   for (int round = 0; round < 2; ++round) {  // the second reuses the cached pattern
     SpMat jac;
     system.Jacobian(x, &jac);
-    EXPECT_DERIVATIVE_NEAR(Mat(jac), testing::FiniteDifferenceJacobian(residual, x), 1e-6);
+    EXPECT_DERIVATIVE_NEAR(Mat(jac), fd_check::FiniteDifferenceJacobian(residual, x), 1e-6);
     x.segment(0, l.d) *= -0.5;
   }
   EXPECT_EQ(system.nonsmooth_elements(), 0);
@@ -244,7 +249,7 @@ TEST(NonsmoothTest, ActiveSetReportsRevisitedActiveSetsWhenItFails) {
   // The Kojima-Shindo NCP from the cold start g^0 = -1, r^0 = +1 (left out of the shared
   // fixtures for this reason): the iteration stalls, and the active sets it went through are
   // reported, with the revisits, instead of looping.
-  const testing::Fixture& f = testing::FindFixture("kojima_shindo");
+  const fixtures::Fixture& f = fixtures::FindFixture("kojima_shindo");
   NonsmoothOptions o;
   o.function = ComplementarityFunction::kMin;
   NonsmoothFormulation formulation(o);
@@ -273,7 +278,7 @@ class Collector final : public PathObserver {
 };
 
 TEST(NonsmoothTest, RestartTurnsThePathOntoTheFloorWhereThePredictorPointsIntoIt) {
-  const testing::Fixture& fixture = testing::FindFixture("two_bar_obstacle_path");
+  const fixtures::Fixture& fixture = fixtures::FindFixture("two_bar_obstacle_path");
   for (auto fn : {ComplementarityFunction::kFischerBurmeister, ComplementarityFunction::kMin}) {
     for (bool restart : {true, false}) {
       NonsmoothOptions o;
@@ -288,7 +293,7 @@ TEST(NonsmoothTest, RestartTurnsThePathOntoTheFloorWhereThePredictorPointsIntoIt
                                                fixture.base, f, po, &c);
       int restarted = 0;
       for (const auto& a : c.accepted) restarted += a.result.details.at("restarted") == "1";
-      const double floor_load = testing::TwoBarOf(fixture.problem)
+      const double floor_load = fixtures::TwoBarOf(fixture.problem)
                                     .Lambda(fixture.problem.parameters.Real("floor_height"));
       if (restart) {
         EXPECT_EQ(s.status, Status::kConverged) << s.message;
@@ -304,6 +309,16 @@ TEST(NonsmoothTest, RestartTurnsThePathOntoTheFloorWhereThePredictorPointsIntoIt
     }
   }
 }
+
+}  // namespace
+
+// ArchCurvedTest's parameter readable in GoogleTest's messages: found by argument-dependent
+// lookup, so in the enum's namespace cb.
+void PrintTo(ComplementarityFunction function, std::ostream* out) {
+  *out << (function == ComplementarityFunction::kMin ? "min" : "fb");
+}
+
+namespace {
 
 // P3: the first 50 arc-length steps at the report's theta, every step and kink verified, with
 // the counts filled.
@@ -348,7 +363,7 @@ TEST_P(ArchCurvedTest, First50StepsAllVerified) {
   for (const StepAttempt& a : rc.accepted) reference_iterations += a.result.counts.iterations;
   // Same path: the final states agree.
   EXPECT_TRUE(
-      testing::RelativelyClose(s.final_state.u, rs.final_state.u, 1e-6, p.scales.length, "u"));
+      fixtures::RelativelyClose(s.final_state.u, rs.final_state.u, 1e-6, p.scales.length, "u"));
   EXPECT_NEAR(s.final_state.lambda, rs.final_state.lambda, 1e-6 * std::abs(rs.final_state.lambda));
   RecordProperty("iterations", total.iterations);
   RecordProperty("implicit_fb_iterations", reference_iterations);
@@ -381,11 +396,16 @@ struct SolverCase {
   std::string fixture;
 };
 
+void PrintTo(const SolverCase& c, std::ostream* out) {
+  *out << (c.function == ComplementarityFunction::kMin ? "active-set" : "nonsmooth-fb") << ", "
+       << c.solver << ", " << c.fixture;
+}
+
 class NonsmoothSolverFixtureTest : public ::testing::TestWithParam<SolverCase> {};
 
 TEST_P(NonsmoothSolverFixtureTest, WarmStepIsVerifiedAndKnown) {
   const SolverCase c = GetParam();
-  const testing::Fixture& f = testing::FindFixture(c.fixture);
+  const fixtures::Fixture& f = fixtures::FindFixture(c.fixture);
   NonsmoothOptions o;
   o.function = c.function;
   o.solver = c.solver;
@@ -406,7 +426,7 @@ std::vector<SolverCase> AllSolverCases() {
   std::vector<SolverCase> cases;
   for (auto fn : {ComplementarityFunction::kFischerBurmeister, ComplementarityFunction::kMin}) {
     for (const char* solver : {"dogleg", "quasi-newton"}) {
-      for (const testing::Fixture& f : testing::Fixtures()) {
+      for (const fixtures::Fixture& f : fixtures::Fixtures()) {
         if (!f.path) cases.push_back({fn, solver, f.name});
       }
     }

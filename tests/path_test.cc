@@ -41,7 +41,7 @@ PathSummary Trace(const Problem& p, Formulation& f, int steps, Collector* c, dou
   return TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, c);
 }
 
-using testing::TwoBarOf;
+using fixtures::TwoBarOf;
 
 TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
   const Problem p = MakeProblem("bar-wall");
@@ -75,7 +75,7 @@ TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
 
 TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
   const Problem p = MakeProblem("two-bar");
-  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
   ImplicitFb f;
   Collector c;
   const double theta = 0.02;
@@ -99,7 +99,7 @@ TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
 
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
-  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
   const double floor = p.parameters.Real("floor_height");
   ImplicitFb f;
   Collector c;
@@ -232,7 +232,7 @@ TEST(PathTest, ArchCurvedKinksHaveZeroGapAndReactionAndLieBetweenTheirSteps) {
 // other branch, where the apex has moved sideways (on the symmetric branch it never does).
 TEST(PathTest, SteepTwoBarBifurcationIsLocatedAndTheOtherBranchIsTaken) {
   const Problem p = MakeProblem("two-bar", {{"height", "3"}, {"apex", "free"}});
-  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
   const double length = std::sqrt(t.b * t.b + t.h * t.h);
   // The closed-form bifurcation height: the root of l^3 = L w^2 below h, by bisection.
   double lo = t.b * std::sqrt(2.0), hi = t.h;  // l^3 - L w^2 > 0 at h, < 0 at sqrt(2) b
@@ -302,7 +302,7 @@ TEST(PathTest, SteepTwoBarBifurcationIsLocatedAndTheOtherBranchIsTaken) {
 // closed form's lambda(w) rises again).
 TEST(PathTest, UnstableModesCountTheDescendingBranchOfTheSnapThrough) {
   const Problem p = MakeProblem("two-bar");
-  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
   ImplicitFb f;
   Collector c;
   PathOptions o;

@@ -197,6 +197,11 @@ def set_title(name, runs, steps):
     return f"{label}, set `{name}` ({what})"
 
 
+def _steps_of(steps, formulation, start):
+    """The step records of one run (formulation x start)."""
+    return steps[(steps["formulation"] == formulation) & (steps["start"] == start)]
+
+
 def aggregate(runs, steps):
     """Per formulation x start that ran: counts, success rate, shifted geometric means with
     failures charged, medians over accepted steps. Returns (table, skipped runs)."""
@@ -208,7 +213,7 @@ def aggregate(runs, steps):
     iter_charge = float(replay["iterations"].max()) if len(replay) else 0.0
     rows = []
     for _, run in ran.iterrows():
-        g = replay[(replay["formulation"] == run["formulation"]) & (replay["start"] == run["start"])]
+        g = _steps_of(replay, run["formulation"], run["start"])
         ok = g["accepted"].astype(bool).to_numpy()
         t_ms = charged(g["time_s"].to_numpy(), ok, time_charge) * TIME_UNIT_MS
         its = charged(g["iterations"].to_numpy(), ok, iter_charge)
@@ -259,8 +264,9 @@ def measure_table(steps, runs, column):
     replay = steps[steps["mode"] == "replay"] if "mode" in steps else steps
     cols = {}
     for _, run in ran.iterrows():
-        g = replay[(replay["formulation"] == run["formulation"]) & (replay["start"] == run["start"])]
-        v = g.set_index("step")[column].astype(float).where(g.set_index("step")["accepted"].astype(bool))
+        g = _steps_of(replay, run["formulation"], run["start"])
+        by_step = g.set_index("step")
+        v = by_step[column].astype(float).where(by_step["accepted"].astype(bool))
         if column == "iterations":
             v = v.clip(lower=1)  # a step solved at its start counts as one iteration
         cols[solver_label(run["formulation"], run["start"])] = v
@@ -268,7 +274,7 @@ def measure_table(steps, runs, column):
 
 
 def histogram(steps, formulation, start):
-    g = steps[(steps["formulation"] == formulation) & (steps["start"] == start)]
+    g = _steps_of(steps, formulation, start)
     acc = g[g["accepted"].astype(bool)]["iterations"].astype(int)
     counts = {k: int((acc == k).sum()) for k in range(0, HISTOGRAM_MAX + 1)}
     for lo, hi in HISTOGRAM_RANGES:
@@ -588,7 +594,8 @@ def scaling_section(results_dir, figures_dir):
         if len(big):
             out += ["Memory added by the solve at the largest verified n: "
                     + "; ".join(f"{r['formulation']} {fmt(r['solve_mem_mb'], '.0f')} MB "
-                                f"({fmt(r['solve_mem_mb'] * 1048576 / r['d'], '.0f')} bytes per dof)"
+                                f"({fmt(r['solve_mem_mb'] * 1048576 / r['d'], '.0f')} "
+                                "bytes per dof)"
                                 for _, r in big.iterrows()) + ".", ""]
     fig = os.path.join(figures_dir, "scaling_block.png")
     if plot_scaling(s, fig):
@@ -616,7 +623,8 @@ def step_benchmark_section(results_dir):
     if b.empty:
         return []
     parts = b["run_name"].str.split("/")
-    b["problem"], b["formulation"], b["start"], b["label"] = parts.str[1], parts.str[2], parts.str[3], parts.str[4]
+    b["problem"], b["formulation"], b["start"], b["label"] = (
+        parts.str[1], parts.str[2], parts.str[3], parts.str[4])
     b["k"] = parts.str[5].str.replace("step:", "", regex=False)
     out = ["## One replayed step (`formulation_step_benchmark`)", "",
            "Google Benchmark timing of single replayed steps of the reference path (implicit-fb), "
@@ -628,8 +636,12 @@ def step_benchmark_section(results_dir):
         g = b[b["problem"] == problem]
         where = ctx.get(f"{problem}_steps")
         labels = list(dict.fromkeys(zip(g["label"], g["k"])))
-        out += [f"**{PROBLEM_LABEL.get(problem, problem)}**" + (f" (reference path: {where})" if where else ""), "",
-                "| formulation | start | " + " | ".join(f"{lab}, step {k}" for lab, k in labels) + " |",
+        heading = f"**{PROBLEM_LABEL.get(problem, problem)}**"
+        if where:
+            heading += f" (reference path: {where})"
+        out += [heading, "",
+                "| formulation | start | "
+                + " | ".join(f"{lab}, step {k}" for lab, k in labels) + " |",
                 "|---|---|" + "---|" * len(labels)]
         for (f, start), h in g.groupby(["formulation", "start"], sort=False):
             cells = []
@@ -644,7 +656,8 @@ def step_benchmark_section(results_dir):
                     reasons.setdefault(short, len(reasons) + 1)
                     cells.append(f"({reasons[short]})")
                 else:
-                    cells.append(f"{fmt(r['seconds'] * 1e3)} ms, {fmt(r.get('iterations'), '.0f')} it")
+                    cells.append(f"{fmt(r['seconds'] * 1e3)} ms, "
+                                 f"{fmt(r.get('iterations'), '.0f')} it")
             out.append(f"| {f} | {start} | " + " | ".join(cells) + " |")
         out.append("")
     if reasons:
@@ -690,11 +703,13 @@ def target_rows(bench, solver="cholmod"):
     for k in (100, 1000):
         r = _bench_row(bench, f"BM_ArchCurvedWarmStep/{solver}/{k}")
         add(f"one warm P3 step (after step {k}) < {TARGET_P3_STEP_S * 1e3} ms", r,
-            r is not None and f"{fmt(r['seconds'] * 1e6)} us ({fmt(r.get('newton_iterations'), '.0f')} "
-            "iterations)", r is not None and r["seconds"] < TARGET_P3_STEP_S)
+            r is not None and f"{fmt(r['seconds'] * 1e6)} us "
+            f"({fmt(r.get('newton_iterations'), '.0f')} iterations)",
+            r is not None and r["seconds"] < TARGET_P3_STEP_S)
     r = _bench_row(bench, f"BM_ArchPath/arch-curved/{solver}/iterations:3")
     add(f"whole P3 path (1604 steps, kinks located) < {TARGET_P3_PATH_S} s", r,
-        r is not None and f"{fmt(r['seconds'])} s", r is not None and r["seconds"] < TARGET_P3_PATH_S)
+        r is not None and f"{fmt(r['seconds'])} s",
+        r is not None and r["seconds"] < TARGET_P3_PATH_S)
     for problem in ("arch-flat", "arch-curved"):
         r = _bench_row(bench, f"BM_ArchPath/{problem}/{solver}/iterations:3")
         add(f"median Newton iterations per step, {PROBLEM_LABEL[problem]} <= "
@@ -702,10 +717,12 @@ def target_rows(bench, solver="cholmod"):
             r is not None and f"{fmt(r.get('median_iterations'), '.0f')} "
             f"({fmt(r.get('steps'), '.0f')} steps)",
             r is not None and r.get("median_iterations") <= TARGET_MEDIAN_ITERATIONS)
-    for name, label in ((f"BM_IterationOverFactorizationBlock/{solver}/50", "P1 n = 50"),
-                        (f"BM_IterationOverFactorizationBlock/{solver}/200", "P1 n = 200"),
-                        (f"BM_IterationOverFactorizationArchCurved/{solver}/100", "P3, step 100"),
-                        (f"BM_IterationOverFactorizationArchCurved/{solver}/1000", "P3, step 1000")):
+    block_ratio = f"BM_IterationOverFactorizationBlock/{solver}"
+    arch_ratio = f"BM_IterationOverFactorizationArchCurved/{solver}"
+    for name, label in ((f"{block_ratio}/50", "P1 n = 50"),
+                        (f"{block_ratio}/200", "P1 n = 200"),
+                        (f"{arch_ratio}/100", "P3, step 100"),
+                        (f"{arch_ratio}/1000", "P3, step 1000")):
         r = _bench_row(bench, name)
         unit, scale = ("ms", 1e3) if "Block" in name else ("us", 1e6)
         add(f"Newton iteration / KLU factorisation + solve of its Jacobian <= "
@@ -730,9 +747,10 @@ def target_rows(bench, solver="cholmod"):
                          k <= TARGET_P1_GROWTH))
         if "solve_peak_mb" in block:
             per_dof = block["solve_bytes_per_dof"] / 1024
+            peaks = zip(block["n"], block["solve_peak_mb"], per_dof)
             rows.append(("peak memory of the P1 solve reported, linear in d",
                          "; ".join(f"n = {n}: {fmt(mb, '.0f')} MB ({fmt(b, '.2f')} kB per dof)"
-                                   for n, mb, b in zip(block["n"], block["solve_peak_mb"], per_dof)),
+                                   for n, mb, b in peaks),
                          None))
     else:
         rows.append((f"P1 time growth <= d^{TARGET_P1_GROWTH}", "not measured", "not measured"))

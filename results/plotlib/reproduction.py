@@ -22,7 +22,8 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
 
 FIGURES = os.path.join("figures", "reproduction")
-ETA_LABEL = {1: "case 1 (proposed)", 2: "case 2", 3: "case 3 (degenerate)", 4: "case 4 (nonsmooth FB)"}
+ETA_LABEL = {1: "case 1 (proposed)", 2: "case 2", 3: "case 3 (degenerate)",
+             4: "case 4 (nonsmooth FB)"}
 SOLVER_LABEL = {"dogleg": "trust-region dogleg", "newton": "Newton (line search)",
                 "quasi-newton": "quasi-Newton (Broyden)"}
 # The report's published figures (METR 2009-06, section 5; ../shared/spec/PROBLEMS.md).
@@ -109,7 +110,7 @@ def p1(results_dir, lines):
     any_run = next(iter(runs.values()))
     lines.append("d = %s, nc = %s (the report: d = 5202, nc = 102). One fixed-load solve from "
                  "u0 = 0, g0 = -1, r0 = +1 (scaled)." % (_parameter(any_run, "num_dofs", "?"),
-                                                           _parameter(any_run, "num_pairs", "?")))
+                                                         _parameter(any_run, "num_pairs", "?")))
     lines.append("")
     table = ["| solver | eta case | start | iterations | time [s] | verified | last ratio "
              "e_k+1/e_k | order estimate | behaviour at the end |",
@@ -162,7 +163,8 @@ def p1(results_dir, lines):
                          else "partly: see the table", d["1"][2], d["1"][0], d["2"][2], d["2"][0]))
     if d["3"]:
         lines.append("- Case 3 converges only linearly and fails within 1000 iterations from the "
-                     "cold start: from the cold start the suite's case 3 %s in %d iterations (%s)%s." % (
+                     "cold start: from the cold start the suite's case 3 %s in %d iterations "
+                     "(%s)%s." % (
                          "converges" if d["3"][1] else "does not converge", d["3"][0], d["3"][2],
                          " -- this DISAGREES with the report" if d["3"][1] else ""))
     if d["3-near"]:
@@ -290,7 +292,8 @@ def _deformed_figure(results_dir, run, label, title, name):
         c = contacts[(contacts["label"] == label) & (contacts["step"] == snap["step"].iloc[0])]
         closed = c[c["r"] < 0]["node"].unique()
         xy = snap.set_index("node")
-        ax.plot(xy.loc[closed, "x"] + xy.loc[closed, "ux"], xy.loc[closed, "y"] + xy.loc[closed, "uy"],
+        ax.plot(xy.loc[closed, "x"] + xy.loc[closed, "ux"],
+                xy.loc[closed, "y"] + xy.loc[closed, "uy"],
                 "ko", ms=4, mfc="none", label="nodes in contact")
         ax.legend(fontsize=8, loc="upper right")
     ax.set_aspect("equal")
@@ -316,7 +319,8 @@ def _reconstruction(run, lines):
         return
     lines += ["| parameter | value | meaning |", "|---|---|---|"]
     for _, row in p.iterrows():
-        lines.append("| %s | %s | %s |" % (row["name"], row["value"], str(row["doc"]).replace("|", "/")))
+        meaning = str(row["doc"]).replace("|", "/")
+        lines.append("| %s | %s | %s |" % (row["name"], row["value"], meaning))
     lines.append("")
 
 
@@ -337,7 +341,8 @@ def _path_runs(results_dir, problem, heading, lines):
 
 def p2(results_dir, lines):
     found = _path_runs(results_dir, "arch-flat",
-                       "## P2 `arch-flat`: large deformation, two flat obstacles (report 5.2)", lines)
+                       "## P2 `arch-flat`: large deformation, two flat obstacles (report 5.2)",
+                       lines)
     if found is None:
         return
     runs, r, kinks = found
@@ -356,14 +361,19 @@ def p2(results_dir, lines):
                   _parameter(r, "arc_length", "?"), len(acc)),
               "| kinks located on the path | 129 | %d |" % kinks]
     if b is not None:
-        lines.append("| B, limit point | a kink (contact change) | lambda = %.4f, u_a = %.4f m, %s, step %d |" % (
-            b["lambda"], b["control_disp"], "at a kink" if b["nonsmooth"] else "smooth (no kink)", b["step"]))
+        lines.append("| B, limit point | a kink (contact change) | "
+                     "lambda = %.4f, u_a = %.4f m, %s, step %d |" % (
+                         b["lambda"], b["control_disp"],
+                         "at a kink" if b["nonsmooth"] else "smooth (no kink)", b["step"]))
     if c is not None:
-        lines.append("| C, bifurcation point | after B | lambda = %.6f, u_a = %.4f m, step %d, %s |" % (
-            c["lambda"], c["control_disp"], c["step"], "branch switched" if c["switched"] else "not switched"))
+        lines.append("| C, bifurcation point | after B | "
+                     "lambda = %.6f, u_a = %.4f m, step %d, %s |" % (
+                         c["lambda"], c["control_disp"], c["step"],
+                         "branch switched" if c["switched"] else "not switched"))
     if d is not None:
-        lines.append("| D, on the asymmetric branch | beyond C | lambda = %.4f, u_a = %.4f m (the last state, branch %d) |" % (
-            d["lambda"], d["control_disp"], d["branch"]))
+        lines.append("| D, on the asymmetric branch | beyond C | "
+                     "lambda = %.4f, u_a = %.4f m (the last state, branch %d) |" % (
+                         d["lambda"], d["control_disp"], d["branch"]))
     lines.append("")
     if b is not None and c is not None:
         lines.append("The suite's B is %s; C lies %s. The report's B is a kink made by a contact "
@@ -373,7 +383,8 @@ def p2(results_dir, lines):
                          "change within a step of it)",
                          "a hair past B (the two critical points are %.1e apart in lambda: the "
                          "buckling of a panel near each support, a symmetric and an antisymmetric "
-                         "combination of two weakly coupled modes)" % abs(c["lambda"] - b["lambda"])))
+                         "combination of two weakly coupled modes)"
+                         % abs(c["lambda"] - b["lambda"])))
         lines.append("")
     labels = {"B": (b, "s"), "C": (c, "D"), "D": (d, "o")}
     path = _path_figure(results_dir, r, "P2 arch-flat, implicit-fb, Newton: equilibrium path "
@@ -395,7 +406,8 @@ def p2(results_dir, lines):
             lines.append("- %s: the bifurcation point was located but not left: %s" % (
                 SOLVER_LABEL[s], bx["message"].iloc[-1]))
         elif bx is not None and len(bx) and len(bx[bx["switched"] == 0]):
-            lines.append("- %s: %s" % (SOLVER_LABEL[s], bx[bx["switched"] == 0]["message"].iloc[-1]))
+            lines.append("- %s: %s" % (SOLVER_LABEL[s],
+                                       bx[bx["switched"] == 0]["message"].iloc[-1]))
     lines.append("")
 
 
@@ -416,12 +428,14 @@ def p3(results_dir, lines):
               "| steps (arc length 0.1) | 1604 | %d |" % len(acc),
               "| kinks located | not stated | %d |" % kinks,
               "| limit points (lambda turns) | B, nonsmooth | %d, of which %d at a kink |" % (
-                  len(limits) if limits is not None else 0, len(nonsmooth) if nonsmooth is not None else 0)]
+                  len(limits) if limits is not None else 0,
+                  len(nonsmooth) if nonsmooth is not None else 0)]
     if b is not None:
-        lines.append("| B, first nonsmooth limit point | passed | lambda = %.4f, u_a = %.4f m, step %d |" % (
-            b["lambda"], b["control_disp"], b["step"]))
-    lines.append("| C, the end of the traced path | after 1604 steps | lambda = %.4f, u_a = %.4f m |" % (
-        c["lambda"], c["control_disp"]))
+        lines.append("| B, first nonsmooth limit point | passed | "
+                     "lambda = %.4f, u_a = %.4f m, step %d |" % (
+                         b["lambda"], b["control_disp"], b["step"]))
+    lines.append("| C, the end of the traced path | after 1604 steps | "
+                 "lambda = %.4f, u_a = %.4f m |" % (c["lambda"], c["control_disp"]))
     lines.append("")
     path = _path_figure(results_dir, r, "P3 arch-curved, implicit-fb, Newton: equilibrium path "
                         "with kinks, nonsmooth limit point B and end point C", "p3_path.png",
@@ -476,7 +490,8 @@ def write(results_dir):
               "P3 would lie near lambda = 1.9e5, about 10^6 arc-length steps of 0.1 away, against "
               "the report's 1604 steps, so the load unit is read as MN (`load` = 5000 and 1000 kN "
               "per unit lambda; force_scale = 1000 kN).", ""]
-    for problem, sub in (("block", "eta1-newton"), ("arch-flat", "newton"), ("arch-curved", "newton")):
+    for problem, sub in (("block", "eta1-newton"), ("arch-flat", "newton"),
+                         ("arch-curved", "newton")):
         r = _run(results_dir, problem, sub)
         if r is not None:
             lines += ["### %s" % problem, ""]
