@@ -1,7 +1,5 @@
 #include "io/problem_file.h"
 
-#include <Eigen/Geometry>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +14,7 @@
 #include "model/complementarity_model.h"
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
+#include "model/rigid_motion.h"
 #include "model/truss.h"
 
 namespace cb::io {
@@ -311,87 +310,21 @@ void CheckConnected(const BodyInput& in, const std::vector<int>& uses, const cha
 }
 
 // Rigid-body modes must be restrained: by the supports alone when there are no contact pairs,
-// or by supports and contact normals together. The check is a rank test of the constraint rows
-// (supported components; each pair's obstacle normal at its node) against the rigid-body modes
-// of the reference configuration (2-D: 2 translations, 1 rotation; 3-D: 3 + 3). Contact is
-// unilateral, so passing the test is necessary, not sufficient, for a pair to hold the body.
+// or by supports and contact normals together (model/rigid_motion.h).
 void CheckHeld(const BodyInput& in, const ElasticBody& body,
                const std::vector<std::shared_ptr<const Obstacle>>& obstacles,
                const std::vector<ContactPair>& pairs) {
-  const int dim = body.dim();
-  const int n = body.num_nodes();
-  const int m = dim == 2 ? 3 : 6;
-  Point centre = Point::Zero(dim);
-  for (int i = 0; i < n; ++i) centre += body.reference(i);
-  centre /= n;
-  double size = 0.0;
-  for (int i = 0; i < n; ++i) size = std::max(size, (body.reference(i) - centre).norm());
-  if (!(size > 0.0)) size = 1.0;
-  Mat modes = Mat::Zero(static_cast<Eigen::Index>(n) * dim, m);
-  for (int i = 0; i < n; ++i) {
-    const Point x = (body.reference(i) - centre) / size;
-    for (int c = 0; c < dim; ++c) modes(i * dim + c, c) = 1.0;
-    if (dim == 2) {
-      modes(i * 2, 2) = -x[1];
-      modes(i * 2 + 1, 2) = x[0];
-    } else {
-      for (int a = 0; a < 3; ++a) {  // e_a x (x - centre)
-        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-        axis[a] = 1.0;
-        const Eigen::Vector3d w = axis.cross(Eigen::Vector3d(x[0], x[1], x[2]));
-        for (int c = 0; c < 3; ++c) modes(i * 3 + c, 3 + a) = w[c];
-      }
-    }
-  }
-  Eigen::FullPivLU<Mat> all(modes);
-  all.setThreshold(1e-9);
-  const int needed = static_cast<int>(all.rank());
-
-  std::vector<Eigen::RowVectorXd> rows;
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < dim; ++c) {
-      if (body.dofs().dof(i, c) < 0) rows.push_back(modes.row(i * dim + c));
-    }
-  }
-  for (const ContactPair& p : pairs) {
-    const Point x = body.reference(p.node);
-    Point normal = obstacles[p.obstacle]->Gradient(x);
-    if (!(normal.norm() > 0.0)) continue;
-    normal.normalize();
-    rows.push_back(normal.transpose() * modes.block(p.node * dim, 0, dim, m));
-  }
+  const RigidMotionRestraint restraint = CheckRigidMotionRestraint(body, obstacles, pairs);
   const JsonNode where = in.root().Has("supports") ? in.root().Field("supports") : in.root();
-  if (rows.empty()) {
+  if (restraint.constraints == 0) {
     where.Fail(
         "no supports and no contact pairs: nothing holds the body (its stiffness is "
         "singular)");
   }
-  Mat constraints(static_cast<Eigen::Index>(rows.size()), m);
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    constraints.row(static_cast<Eigen::Index>(k)) = rows[k];
-  }
-  Eigen::FullPivLU<Mat> held(constraints);
-  held.setThreshold(1e-9);
-  const int restrained = static_cast<int>(held.rank());
-  if (restrained >= needed) return;
-  // Name one free motion: a rotation if it has any (a rotation about another point mixes in
-  // translations, which would be the wrong name), else the dominant translation.
-  const Vec free = held.kernel().col(0);
-  const int rotations = dim == 2 ? 1 : 3;
-  Eigen::Index largest = 0;
-  if (free.tail(rotations).cwiseAbs().maxCoeff(&largest) > 1e-6 * free.norm()) {
-    largest += m - rotations;
-  } else {
-    free.head(dim).cwiseAbs().maxCoeff(&largest);
-  }
-  static const char* const kModes2[3] = {"translation in x", "translation in y",
-                                         "rotation about z"};
-  static const char* const kModes3[6] = {"translation in x", "translation in y",
-                                         "translation in z", "rotation about x",
-                                         "rotation about y", "rotation about z"};
-  const std::string example = dim == 2 ? kModes2[largest] : kModes3[largest];
-  const std::string count = std::to_string(needed - restrained) + " rigid-body mode" +
-                            (needed - restrained > 1 ? "s" : "");
+  if (restraint.free() <= 0) return;
+  const std::string count =
+      std::to_string(restraint.free()) + " rigid-body mode" + (restraint.free() > 1 ? "s" : "");
+  const std::string& example = restraint.free_example;
   if (pairs.empty()) {
     where.Fail("the supports leave " + count + " free (e.g. " + example +
                ") and there are no contact pairs to hold the body: add supports");
