@@ -173,16 +173,7 @@ void ContactBlockFactor::ReadTrailingFactor() {
 }
 
 bool ContactBlockFactor::Forward(const Mat& b, Mat* out) {
-  const int cols = static_cast<int>(b.cols());
-  if (!cholmod_->SolvePhase(CHOLMOD_P, factor_, b.data(), num_dofs_, cols, &solve_buffer_1_)) {
-    return false;
-  }
-  if (!cholmod_->SolvePhase(CHOLMOD_L, factor_, solve_buffer_1_.data(), num_dofs_, cols,
-                            &solve_buffer_2_)) {
-    return false;
-  }
-  out->resize(num_dofs_, b.cols());
-  std::memcpy(out->data(), solve_buffer_2_.data(), sizeof(double) * out->size());
+  if (!TwoPhases(CHOLMOD_P, CHOLMOD_L, b.data(), static_cast<int>(b.cols()), out)) return false;
   auto tail = out->bottomRows(num_contact_dofs());
   tail = (trailing_factor_.triangularView<Eigen::Lower>() * tail).eval();
   return true;
@@ -196,17 +187,18 @@ void ContactBlockFactor::ApplyMiddleInverse(Mat* v) const {
 }
 
 bool ContactBlockFactor::Backward(Mat w, Mat* out) {
-  const int cols = static_cast<int>(w.cols());
   auto tail = w.bottomRows(num_contact_dofs());
   tail = (trailing_factor_.transpose().triangularView<Eigen::Upper>() * tail).eval();
-  if (!cholmod_->SolvePhase(CHOLMOD_Lt, factor_, w.data(), num_dofs_, cols, &solve_buffer_1_)) {
-    return false;
-  }
-  if (!cholmod_->SolvePhase(CHOLMOD_Pt, factor_, solve_buffer_1_.data(), num_dofs_, cols,
+  return TwoPhases(CHOLMOD_Lt, CHOLMOD_Pt, w.data(), static_cast<int>(w.cols()), out);
+}
+
+bool ContactBlockFactor::TwoPhases(int first, int second, const double* in, int cols, Mat* out) {
+  if (!cholmod_->SolvePhase(first, factor_, in, num_dofs_, cols, &solve_buffer_1_) ||
+      !cholmod_->SolvePhase(second, factor_, solve_buffer_1_.data(), num_dofs_, cols,
                             &solve_buffer_2_)) {
     return false;
   }
-  out->resize(num_dofs_, w.cols());
+  out->resize(num_dofs_, cols);
   std::memcpy(out->data(), solve_buffer_2_.data(), sizeof(double) * out->size());
   return true;
 }

@@ -55,6 +55,8 @@ class ContactBlockFactor {
 
  private:
   std::vector<int> InteriorOrdering(const JacobianBlocks& blocks);
+  // out = phase `second` of phase `first` of the d x cols block `in` (CHOLMOD solve phases).
+  bool TwoPhases(int first, int second, const double* in, int cols, Mat* out);
   // L_cc, read off the supernodes of the factor of A + D0.
   void ReadTrailingFactor();
   int num_contact_dofs() const { return static_cast<int>(contact_dofs_.size()); }
