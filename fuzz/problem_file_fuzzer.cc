@@ -1,4 +1,4 @@
-// libFuzzer target: problem files (src/io/problem_file.cc, json_node.cc, and through a
+// libFuzzer target: problem files (src/io/problem_file_reader.cc, json_node.cc, and through a
 // "mesh" field the Gmsh reader). Built and run by scripts/run_fuzz.sh.
 #include "readers.h"
 

@@ -1,9 +1,4 @@
-#include "io/problem_file.h"
-
-#include <Eigen/Geometry>
-#include <Eigen/LU>
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -11,18 +6,19 @@
 #include <set>
 #include <sstream>
 
+#include "io/directions.h"
 #include "io/gmsh.h"
 #include "io/json_node.h"
+#include "io/problem_file.h"
 #include "model/complementarity_model.h"
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
+#include "model/rigid_motion.h"
 #include "model/truss.h"
 
 namespace cb::io {
 
 namespace {
-
-const char* const kDirectionNames[3] = {"x", "y", "z"};
 
 // How the problem is loaded, as the file states it.
 struct Loading {
@@ -311,87 +307,21 @@ void CheckConnected(const BodyInput& in, const std::vector<int>& uses, const cha
 }
 
 // Rigid-body modes must be restrained: by the supports alone when there are no contact pairs,
-// or by supports and contact normals together. The check is a rank test of the constraint rows
-// (supported components; each pair's obstacle normal at its node) against the rigid-body modes
-// of the reference configuration (2-D: 2 translations, 1 rotation; 3-D: 3 + 3). Contact is
-// unilateral, so passing the test is necessary, not sufficient, for a pair to hold the body.
+// or by supports and contact normals together (model/rigid_motion.h).
 void CheckHeld(const BodyInput& in, const ElasticBody& body,
                const std::vector<std::shared_ptr<const Obstacle>>& obstacles,
                const std::vector<ContactPair>& pairs) {
-  const int dim = body.dim();
-  const int n = body.num_nodes();
-  const int m = dim == 2 ? 3 : 6;
-  Point centre = Point::Zero(dim);
-  for (int i = 0; i < n; ++i) centre += body.reference(i);
-  centre /= n;
-  double size = 0.0;
-  for (int i = 0; i < n; ++i) size = std::max(size, (body.reference(i) - centre).norm());
-  if (!(size > 0.0)) size = 1.0;
-  Mat modes = Mat::Zero(static_cast<Eigen::Index>(n) * dim, m);
-  for (int i = 0; i < n; ++i) {
-    const Point x = (body.reference(i) - centre) / size;
-    for (int c = 0; c < dim; ++c) modes(i * dim + c, c) = 1.0;
-    if (dim == 2) {
-      modes(i * 2, 2) = -x[1];
-      modes(i * 2 + 1, 2) = x[0];
-    } else {
-      for (int a = 0; a < 3; ++a) {  // e_a x (x - centre)
-        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-        axis[a] = 1.0;
-        const Eigen::Vector3d w = axis.cross(Eigen::Vector3d(x[0], x[1], x[2]));
-        for (int c = 0; c < 3; ++c) modes(i * 3 + c, 3 + a) = w[c];
-      }
-    }
-  }
-  Eigen::FullPivLU<Mat> all(modes);
-  all.setThreshold(1e-9);
-  const int needed = static_cast<int>(all.rank());
-
-  std::vector<Eigen::RowVectorXd> rows;
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < dim; ++c) {
-      if (body.dofs().dof(i, c) < 0) rows.push_back(modes.row(i * dim + c));
-    }
-  }
-  for (const ContactPair& p : pairs) {
-    const Point x = body.reference(p.node);
-    Point normal = obstacles[p.obstacle]->Gradient(x);
-    if (!(normal.norm() > 0.0)) continue;
-    normal.normalize();
-    rows.push_back(normal.transpose() * modes.block(p.node * dim, 0, dim, m));
-  }
+  const RigidMotionRestraint restraint = CheckRigidMotionRestraint(body, obstacles, pairs);
   const JsonNode where = in.root().Has("supports") ? in.root().Field("supports") : in.root();
-  if (rows.empty()) {
+  if (restraint.constraints == 0) {
     where.Fail(
         "no supports and no contact pairs: nothing holds the body (its stiffness is "
         "singular)");
   }
-  Mat constraints(static_cast<Eigen::Index>(rows.size()), m);
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    constraints.row(static_cast<Eigen::Index>(k)) = rows[k];
-  }
-  Eigen::FullPivLU<Mat> held(constraints);
-  held.setThreshold(1e-9);
-  const int restrained = static_cast<int>(held.rank());
-  if (restrained >= needed) return;
-  // Name one free motion: a rotation if it has any (a rotation about another point mixes in
-  // translations, which would be the wrong name), else the dominant translation.
-  const Vec free = held.kernel().col(0);
-  const int rotations = dim == 2 ? 1 : 3;
-  Eigen::Index largest = 0;
-  if (free.tail(rotations).cwiseAbs().maxCoeff(&largest) > 1e-6 * free.norm()) {
-    largest += m - rotations;
-  } else {
-    free.head(dim).cwiseAbs().maxCoeff(&largest);
-  }
-  static const char* const kModes2[3] = {"translation in x", "translation in y",
-                                         "rotation about z"};
-  static const char* const kModes3[6] = {"translation in x", "translation in y",
-                                         "translation in z", "rotation about x",
-                                         "rotation about y", "rotation about z"};
-  const std::string example = dim == 2 ? kModes2[largest] : kModes3[largest];
-  const std::string count = std::to_string(needed - restrained) + " rigid-body mode" +
-                            (needed - restrained > 1 ? "s" : "");
+  if (restraint.free() <= 0) return;
+  const std::string count =
+      std::to_string(restraint.free()) + " rigid-body mode" + (restraint.free() > 1 ? "s" : "");
+  const std::string& example = restraint.free_example;
   if (pairs.empty()) {
     where.Fail("the supports leave " + count + " free (e.g. " + example +
                ") and there are no contact pairs to hold the body: add supports");
@@ -816,185 +746,6 @@ Problem LoadProblemFile(const std::string& path,
   text << in.rdbuf();
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return ParseProblemFile(text.str(), path, directory.empty() ? "." : directory, settings);
-}
-
-// --- writing ------------------------------------------------------------------------------
-
-namespace {
-
-using OJson = nlohmann::ordered_json;
-
-OJson ToJson(const Point& p) {
-  OJson a = OJson::array();
-  for (Eigen::Index i = 0; i < p.size(); ++i) a.push_back(p[i]);
-  return a;
-}
-
-OJson Directions(const std::vector<int>& components) {
-  OJson a = OJson::array();
-  for (int c : components) a.push_back(kDirectionNames[c]);
-  return a;
-}
-
-// Top-level fields one per line, arrays of objects or arrays one item per line: readable and
-// diff-friendly, and exact (nlohmann writes the shortest text that reads back to each double).
-std::string Layout(const OJson& j) {
-  std::string out = "{\n";
-  bool first = true;
-  for (const auto& [key, value] : j.items()) {
-    out += first ? "" : ",\n";
-    first = false;
-    out += "  " + OJson(key).dump() + ": ";
-    if (value.is_array() && !value.empty() && (value[0].is_object() || value[0].is_array())) {
-      out += "[\n";
-      for (std::size_t i = 0; i < value.size(); ++i) {
-        out += "    " + value[i].dump() + (i + 1 < value.size() ? ",\n" : "\n");
-      }
-      out += "  ]";
-    } else {
-      out += value.dump();
-    }
-  }
-  return out + "\n}\n";
-}
-
-void WriteBody(const Problem& problem, OJson* j) {
-  const BodyContactModel& model = *problem.body;
-  const ElasticBody& body = model.body();
-  const int dim = body.dim();
-  OJson nodes = OJson::array();
-  for (int n = 0; n < body.num_nodes(); ++n)
-    nodes.push_back({{"id", n}, {"x", ToJson(body.reference(n))}});
-  if (const auto* truss = dynamic_cast<const Truss*>(&body)) {
-    (*j)["kind"] = "truss";
-    (*j)["dimension"] = dim;
-    (*j)["nodes"] = nodes;
-    OJson members = OJson::array();
-    for (const auto& m : truss->members()) {
-      members.push_back({{"nodes", {m.node_i, m.node_j}}, {"E", m.youngs_modulus}, {"A", m.area}});
-    }
-    (*j)["members"] = members;
-  } else if (const auto* q4 = dynamic_cast<const PlaneStressQ4*>(&body)) {
-    (*j)["kind"] = "plane-stress-q4";
-    (*j)["deformation"] = "small";
-    (*j)["thickness"] = q4->material().thickness;
-    (*j)["material"] = {{"E", q4->material().youngs_modulus}, {"nu", q4->material().poisson_ratio}};
-    (*j)["nodes"] = nodes;
-    OJson elements = OJson::array();
-    for (const auto& e : q4->elements()) elements.push_back({{"nodes", {e[0], e[1], e[2], e[3]}}});
-    (*j)["elements"] = elements;
-  } else {
-    throw std::invalid_argument("problem '" + problem.name +
-                                "': its body is neither a truss nor a plane-stress Q4 mesh");
-  }
-  OJson supports = OJson::array();
-  OJson loads = OJson::array();
-  const Vec& f = model.load_pattern();
-  for (int n = 0; n < body.num_nodes(); ++n) {
-    std::vector<int> fixed;
-    Point force = Point::Zero(dim);
-    for (int c = 0; c < dim; ++c) {
-      const int dof = body.dofs().dof(n, c);
-      if (dof < 0) {
-        fixed.push_back(c);
-      } else {
-        force[c] = f[dof];
-      }
-    }
-    if (!fixed.empty()) supports.push_back({{"node", n}, {"fixed", Directions(fixed)}});
-    if (force.squaredNorm() > 0.0) loads.push_back({{"node", n}, {"force", ToJson(force)}});
-  }
-  (*j)["supports"] = supports;
-  (*j)["loads"] = loads;
-  OJson obstacles = OJson::array();
-  for (std::size_t k = 0; k < model.obstacles().size(); ++k) {
-    const Obstacle* o = model.obstacles()[k].get();
-    const std::string id = "obstacle" + std::to_string(k);
-    if (const auto* h = dynamic_cast<const HalfSpace*>(o)) {
-      obstacles.push_back({{"id", id},
-                           {"type", "half-space"},
-                           {"point", ToJson(h->point())},
-                           {"normal", ToJson(h->normal())}});
-    } else if (const auto* b = dynamic_cast<const Ball*>(o)) {
-      obstacles.push_back({{"id", id},
-                           {"type", "ball"},
-                           {"centre", ToJson(b->centre())},
-                           {"radius", b->radius()},
-                           {"side", b->side() == Ball::Side::kSolid ? "solid" : "cavity"}});
-    } else {
-      throw std::invalid_argument("problem '" + problem.name + "': obstacle " + std::to_string(k) +
-                                  " (" + o->Describe() + ") has no problem-file form");
-    }
-  }
-  (*j)["obstacles"] = obstacles;
-  OJson pairs = OJson::array();
-  for (const auto& p : model.pairs()) {
-    pairs.push_back({{"node", p.node}, {"obstacle", "obstacle" + std::to_string(p.obstacle)}});
-  }
-  (*j)["contact_pairs"] = pairs;
-  if (problem.control_dof >= 0) {
-    for (int n = 0; n < body.num_nodes(); ++n) {
-      for (int c = 0; c < dim; ++c) {
-        if (body.dofs().dof(n, c) == problem.control_dof) {
-          (*j)["control"] = {
-              {"node", n}, {"direction", kDirectionNames[c]}, {"label", problem.control_label}};
-        }
-      }
-    }
-  }
-}
-
-}  // namespace
-
-std::string ProblemToJson(const Problem& problem) {
-  if (problem.model == nullptr)
-    throw std::invalid_argument("ProblemToJson: the problem has no model");
-  OJson j;
-  j["kind"] = "";  // first in the file; set below
-  j["version"] = 1;
-  j["name"] = problem.name;
-  j["description"] = problem.description;
-  j["units"] = problem.units;
-  OJson parameters = OJson::object();
-  for (const auto& e : problem.parameters.entries()) parameters[e.name] = e.value;
-  j["source"] = {{"problem", problem.name}, {"parameters", parameters}};
-  j["length_scale"] = problem.scales.length;
-  j["force_scale"] = problem.scales.force;
-  if (problem.body != nullptr) {
-    if (problem.loading == LoadingKind::kFixedLoad) {
-      j["analysis"] = "fixed-load";
-      j["load"] = problem.load;
-    } else {
-      j["analysis"] = "arc-length";
-      j["arc_length"] = problem.arc_length;
-      j["steps"] = problem.steps;
-    }
-    WriteBody(problem, &j);
-    return Layout(j);
-  }
-  const auto* lcp = dynamic_cast<const ComplementarityModel*>(problem.model.get());
-  if (lcp == nullptr || !lcp->is_linear()) {
-    throw std::invalid_argument("problem '" + problem.name +
-                                "' has no problem-file form (only bodies and LCPs do)");
-  }
-  j["kind"] = "lcp";
-  j["analysis"] = "fixed-load";
-  const int n = lcp->num_dofs();
-  const Vec zero = Vec::Zero(n);
-  SpMat m;
-  lcp->Stiffness(zero, &m);  // M
-  Vec q;
-  lcp->InternalForce(zero, &q);  // M 0 + q
-  OJson entries = OJson::array();
-  for (int c = 0; c < m.outerSize(); ++c) {
-    for (SpMat::InnerIterator it(m, c); it; ++it) {
-      entries.push_back({static_cast<int>(it.row()), c, it.value()});
-    }
-  }
-  j["M"] = {{"rows", n}, {"cols", n}, {"entries", entries}};
-  j["q"] = OJson::array();
-  for (int i = 0; i < n; ++i) j["q"].push_back(q[i]);
-  return Layout(j);
 }
 
 }  // namespace cb::io
