@@ -10,7 +10,7 @@
 #
 # Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
 # its own (solves of seconds are measured once; see each binary's header comment).
-# Run time on the 2-core machine of the README, measured on the quiet machine: 16 minutes
+# Run time on the 2-core machine of results/README.md, measured on the quiet machine: 16 minutes
 # (implicit_fb_benchmark 469 s, formulation_step_benchmark 255 s, scaling_benchmark 228 s).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), REPETITIONS (3),

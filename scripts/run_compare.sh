@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The comparison runs of COMPARISON.md (`contactbench compare`, replay mode) behind
+# The comparison runs (`contactbench compare`, replay mode; docs/comparison.md) behind
 # results/COMPARISON.md. Records go to RESULTS_DIR/compare/<set>/ (default results/compare/):
 #
 #   arch-flat, arch-curved   P2 and P3, the FULL default path of each problem (its `steps`
@@ -25,7 +25,7 @@
 # Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
 # depends on the reconstruction choices.
 #
-# Run time on the 2-core machine of the README, measured (with run_bench.sh busy on the other
+# Run time on the 2-core machine of results/README.md, measured (with run_bench.sh busy on the other
 # core for the first 22 minutes): 28.5 minutes
 # (arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s, arch-curved-prefix 818 s, of
 # which ~550 s nlopt-mpcc and ~250 s nlopt-merit, block 6 s).

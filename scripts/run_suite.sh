@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: set up (install, build), then regenerate results/:
-#   results/block/, arch-flat/, arch-curved/   the report's three examples (issue 4): records
+#   results/block/, arch-flat/, arch-curved/   the report's three examples: records
 #                                              (CSV), saved states (CSV, VTK)
 #   results/compare/                           the formulation comparison (scripts/run_compare.sh)
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)

@@ -1,4 +1,4 @@
-// Failure handling (issue 6): a NaN from the model, a singular Jacobian (a mechanism), a line
+// Failure handling: a NaN from the model, a singular Jacobian (a mechanism), a line
 // search that cannot decrease the merit, and an Ipopt or NLopt failure are each a failed step
 // with its reason (a Status and a message, the backend's return code for Ipopt and NLopt),
 // never a crash or an exception, and the path driver's cut-back then decides.

@@ -1,4 +1,4 @@
-// Finite-difference derivative checks shared by the tests (ARCHITECTURE.md habit 4, in the
+// Finite-difference derivative checks shared by the tests (docs/architecture.md, house rule 4, in the
 // manner of Ceres' GradientChecker): central differences with a step scaled to each entry.
 #pragma once
 

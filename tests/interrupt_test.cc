@@ -1,4 +1,4 @@
-// Runs that stop keep what they did (issue 6): `contactbench run` interrupted by SIGINT or
+// Runs that stop keep what they did: `contactbench run` interrupted by SIGINT or
 // SIGTERM finishes the record line it is writing, says where it stopped and exits with status 4;
 // a run killed with SIGKILL leaves only whole lines. The records are read back here with a
 // plain RFC 4180 reader.

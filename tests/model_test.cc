@@ -1,4 +1,4 @@
-// Tests of the contact model layer (METHOD.md section 1): obstacles, dof maps, the truss, the
+// Tests of the contact model layer (docs/method.md section 1): obstacles, dof maps, the truss, the
 // plane-stress Q4 body and the body/obstacle contact model. Derivatives are checked against
 // central finite differences at seeded random, non-trivial points; known answers pin values.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The counts and dimensions PROBLEMS.md states, and parameter validation.
+// The counts and dimensions docs/problems.md states, and parameter validation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,7 +31,7 @@ TEST(ProblemsTest, BlockMeshSizeIsAParameter) {
   EXPECT_EQ(p.model->num_pairs(), 22);
 }
 
-// Depth of the lowest node below the supports, H1 of PROBLEMS.md.
+// Depth of the lowest node below the supports, H1 of docs/problems.md.
 double LowestNodeDepth(const Problem& p) {
   const ElasticBody& body = p.body->body();
   double lowest = 0.0;

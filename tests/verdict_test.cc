@@ -1,4 +1,4 @@
-// The verdict (METHOD.md section 7) on points whose residuals are known.
+// The verdict (docs/method.md section 7) on points whose residuals are known.
 #include "verdict/verdict.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Long-format CSV records, written and flushed row by row so that a run that stops early
-// keeps every complete line (ARCHITECTURE.md habit 8).
+// keeps every complete line (docs/architecture.md, house rule 7).
 #pragma once
 
 #include <cstdio>

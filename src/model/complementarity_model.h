@@ -4,7 +4,7 @@
 //   LCP: w = M z + q,  z >= 0, w >= 0, z^T w = 0     (M dense or sparse, n x n)
 //   NCP: w = F(z),     z >= 0, w >= 0, z^T w = 0     (F and its Jacobian by callbacks)
 //
-// The map onto METHOD.md section 1: d = nc = n, one pair per unknown with
+// The map onto docs/method.md section 1: d = nc = n, one pair per unknown with
 //   phi_p(u) = -u_p       (so the gap g = -phi(u) = z, and grad phi = -I),
 //   grad pi(u) = F(u)     (InternalForce; = M u + q for an LCP),
 //   hess pi(u) = dF(u)    (Stiffness; = M),

@@ -1,4 +1,4 @@
-// The abstract contact model of METHOD.md section 1: everything a formulation may ask of a
+// The abstract contact model of docs/method.md section 1: everything a formulation may ask of a
 // discretised body and its contact candidates. Evaluation only, no state about steps or solvers.
 #pragma once
 

@@ -70,7 +70,7 @@ HalfSpace::HalfSpace(Point point, Point normal)
   }
   const double length = normal_.norm();
   if (!(length > 0.0)) throw std::invalid_argument("HalfSpace: zero normal");
-  // Normalised so that varphi is a signed distance (|grad varphi| = 1, METHOD.md section 1).
+  // Normalised so that varphi is a signed distance (|grad varphi| = 1, docs/method.md section 1).
   normal_ /= length;
 }
 

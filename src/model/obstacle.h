@@ -1,5 +1,5 @@
 // Rigid obstacles as signed distances varphi(x), positive INSIDE the obstacle, with
-// |grad varphi| = 1 on the surface (METHOD.md section 1). Curved obstacles have a Hessian,
+// |grad varphi| = 1 on the surface (docs/method.md section 1). Curved obstacles have a Hessian,
 // which is the curvature term sum_p r_p hess phi_p of (29).
 #pragma once
 

@@ -1,6 +1,6 @@
-// P2 `arch-flat` and P3 `arch-curved` (PROBLEMS.md; report sections 5.2 and 5.3): a two-layer
+// P2 `arch-flat` and P3 `arch-curved` (docs/problems.md; report sections 5.2 and 5.3): a two-layer
 // circular arch truss that sags between an upper obstacle (y > 0) and a lower one. Every
-// reconstruction choice of PROBLEMS.md is a parameter here.
+// reconstruction choice of docs/problems.md is a parameter here.
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -29,11 +29,10 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
   p.DeclareReal("area_step", 0.02, "area decrease from one member group to the next [m^2]", -1e6,
                 1e6);
   p.DeclareReal("youngs_modulus", 20e6, "E [kN/m^2] (20 GPa)", 0.0, 1e30, true);
-  // Reconstruction (PROBLEMS.md, "load unit"): the report prints "5 lambda kN" (P2) and
-  // "lambda kN" (P3). With E = 20 GPa and kN the limit point B of P3 lies near lambda = 1.9e5,
-  // some 10^6 arc-length steps of 0.1, against the report's 1604 steps; read in MN (1000 kN)
-  // the path reaches B of P2 in about 900 steps and B of P3 in about 2150, the report's order.
-  // Only the product load x lambda matters: load = 5 (kN) gives the printed reading.
+  // Reconstruction (docs/problems.md, "The load unit (reconstruction)"): the report prints "5 lambda kN" (P2) and
+  // "lambda kN" (P3); read in kN the limit points lie some 10^6 arc-length steps away, read in
+  // MN (1000 kN) within the report's order of steps. Only the product load x lambda matters:
+  // load = 5 (kN) gives the printed reading.
   p.DeclareReal("load", load,
                 "load at node (a) in +x per unit lambda [kN] (reconstruction: the report's "
                 "load unit read as MN)",
@@ -58,7 +57,7 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
 Parameters ArchFlatDefaults() { return ArchDefaults(7.5, 20.0, 30, 0.33, 5000.0, "flat", 2000); }
 
 Parameters ArchCurvedDefaults() {
-  // PROBLEMS.md: span 75 m read as half-span 37.5 m, which gives H1 = 2.6373 m.
+  // docs/problems.md: span 75 m read as half-span 37.5 m, which gives H1 = 2.6373 m.
   return ArchDefaults(37.5, 5.0, 70, 0.73, 1000.0, "cylinder", 1604);
 }
 

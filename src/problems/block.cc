@@ -1,4 +1,4 @@
-// P1 `block` (PROBLEMS.md; report section 5.1): a square plane-stress body in the corner of a
+// P1 `block` (docs/problems.md; report section 5.1): a square plane-stress body in the corner of a
 // rigid wall (x <= 0) and floor (y <= 0), loaded on its right edge, held by contact alone.
 #include <cmath>
 
@@ -18,7 +18,7 @@ Parameters BlockDefaults() {
   p.DeclareReal("traction_x", -0.5e6, "uniform traction on the right edge, x [Pa]", -1e30, 1e30);
   p.DeclareReal("traction_y", -0.5e6, "uniform traction on the right edge, y [Pa]", -1e30, 1e30);
   p.DeclareReal("load", 1.0, "lambda of the single fixed-load solve", -1e30, 1e30);
-  // Gaps of the solution are O(1e-2) m and nodal reactions O(1e2) N (METHOD.md section 2).
+  // Gaps of the solution are O(1e-2) m and nodal reactions O(1e2) N (docs/method.md section 2).
   DeclareScaleParameters(1e-2, 1e2, &p);
   return p;
 }

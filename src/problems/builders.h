@@ -1,4 +1,4 @@
-// Builders of the named problems (PROBLEMS.md). Each has a Defaults() declaring its parameters
+// Builders of the named problems (docs/problems.md). Each has a Defaults() declaring its parameters
 // and a Build() from them; the registry wires them to names.
 #pragma once
 

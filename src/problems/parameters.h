@@ -1,4 +1,4 @@
-// Named, documented problem parameters. Every reconstruction choice of PROBLEMS.md is one of
+// Named, documented problem parameters. Every reconstruction choice of docs/problems.md is one of
 // these, so that another reading can be tried with `--set KEY=VALUE` and no code change.
 #pragma once
 

@@ -57,7 +57,7 @@ Problem MakeBodyProblem(std::shared_ptr<const ElasticBody> body,
                         std::vector<std::shared_ptr<const Obstacle>> obstacles,
                         std::vector<ContactPair> pairs, Vec load, const Parameters& parameters);
 
-// Parameters every problem has: the contact scales of METHOD.md section 2.
+// Parameters every problem has: the contact scales of docs/method.md section 2.
 void DeclareScaleParameters(double length, double force, Parameters* parameters);
 ContactScales ScalesFrom(const Parameters& parameters);
 

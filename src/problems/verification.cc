@@ -1,4 +1,4 @@
-// Small problems with closed-form answers, used by the tests (PROBLEMS.md "Verification").
+// Small problems with closed-form answers, used by the tests (docs/problems.md "Verification").
 // Both are trusses with Biot strain, for which N = E A (l - L) / L is exact, so the closed
 // forms below hold at any displacement.
 #include <cmath>

@@ -54,7 +54,7 @@ class CondensedCholeskySolver final : public LinearSolver {
     factorized_ = false;
     use_fallback_ = false;
     // Small systems go to the LU: there its refactorisation beats the condensation's fixed
-    // costs (P3, d = 279: a KLU refactorisation + solve ~25 us, the condensed ~35 us).
+    // costs (docs/linear-solvers.md, "cholmod").
     if (!has_structure_ || structure_.d < kMinCondensedSize) return FallbackFactorize(a);
     const SpMat* source = &a;
     if (!a.isCompressed()) {

@@ -177,23 +177,13 @@ class EigenSparseLuSolver final : public PatternTrackingSolver {
 // UMFPACK (multifrontal LU with its own column ordering, scaling and iterative refinement).
 //
 // Two controls differ from UMFPACK's defaults, because the defaults give wrong solutions on our
-// Jacobians (relative residual 3 on the first Newton system of `block --set n=100`, 2e-4 at
-// n=50; the Newton line search then stagnates). The cause is not Eigen's wrapper or the reuse of
-// the symbolic object: the plain C API with default controls does the same on one matrix. It is
-//  - the singleton pre-pass: a fixed-load step's constraint row F5 has a single entry, in the
-//    dlambda column, so it is a row singleton OFF the diagonal. UMFPACK then cannot use its
-//    symmetric strategy (diagonal pivoting on an AMD ordering of A + A^T) and falls back to the
-//    unsymmetric one, whatever UMFPACK_STRATEGY says (Info[UMFPACK_STRATEGY_USED] shows it);
-//  - the unsymmetric strategy's threshold pivoting (UMFPACK_PIVOT_TOLERANCE 0.1: any pivot at
-//    least a tenth of the column's largest entry may be chosen for sparsity). On the stiffness
-//    block of a body held only by contact (singular on its own) this compounds along mesh lines
-//    to pivot growth of 1e13 (UMFPACK's rcond estimate 3e-17), more than iterative refinement
-//    can repair.
-// Without the singleton pre-pass the strategy is symmetric again (and the factorisation 2.4x
-// faster on that sequence); pivot tolerance 1 (partial pivoting) makes the unsymmetric strategy
-// accurate too, for matrices where it is still chosen, and costs nothing under the symmetric
-// one. Both were checked on the recorded Newton sequences of block (n = 50, 100) and
-// arch-curved: relative residuals <= 3e-13 (block) and 1.2e-10 (arch; as with every backend).
+// Jacobians (docs/linear-solvers.md, "umfpack", has the measurements):
+//  - no singleton pre-pass: a fixed-load step's constraint row has a single entry, in the
+//    dlambda column, a row singleton OFF the diagonal, which forces the unsymmetric strategy
+//    whatever UMFPACK_STRATEGY says;
+//  - pivot tolerance 1 (partial pivoting): the unsymmetric strategy's threshold pivoting
+//    compounds along mesh lines on the stiffness of a body held only by contact (singular on its
+//    own), beyond what iterative refinement repairs.
 class UmfpackSolver final : public PatternTrackingSolver {
  public:
   UmfpackSolver() {
@@ -242,32 +232,19 @@ class UmfpackSolver final : public PatternTrackingSolver {
 // the diagonal; designed for circuit matrices) through its C API, because Eigen's wrapper
 // factorises from scratch every time. Newton refactorises one pattern many times, and
 // klu_refactor reuses the pivot order of the last klu_factor: it skips the pivot search and the
-// symbolic work of each column (per call 1.7x faster on block n = 50, 1.4x at n = 100, where the
-// flops dominate, 4x on arch-curved). The old order can turn bad when the values change a lot
-// (in the block's Newton sequence, as contacts settle: pivot growth 1e10 and residuals 5e-8 by
-// the 12th iteration, or 1 with KLU's row scaling), so every refactorisation is checked and,
+// symbolic work of each column. The old order can turn bad when the values change a lot (as
+// contacts settle in the block's Newton sequence), so every refactorisation is checked and,
 // when suspect, replaced by a full factorisation that pivots afresh. See RefactorIsSound.
 //
-// Settings, chosen by timing the alternatives on the recorded Newton sequences of block (n = 50
-// and 100) and arch-curved (300 steps); 2 cores, noise about 10%:
-//  - ordering AMD (the default): COLAMD made 2.4x more fill and was 3.5x slower on the block;
-//  - BTF on (the default): a fixed-load step's Jacobian is not irreducible: the constraint row
-//    has one entry, in the dlambda column, so it splits off as a 1 x 1 block and the load column
-//    stays outside the LU factors. That saved 16% of the flops and ~14% of the time on the
-//    block. Arc-length Jacobians are irreducible and pay only the maximum transversal in each
-//    analysis. (With row scaling on and BTF off, one arch system was solved only to 1e-6.)
-//  - scale -1, NOT the default 2 (rows divided by their largest entry): the formulations already
-//    make every row dimensionless (METHOD.md section 2), so KLU's row scaling buys nothing and
-//    costs time: without it the block's 13 Newton systems took 0.175 s instead of 0.21 s, n = 100
-//    2.0 s instead of 2.1 s, the arch's 601 systems 0.025 s instead of 0.027 s, with relative
-//    residuals as good or better (block 3e-12 and 1e-11 instead of 1e-11 and 4e-10; arch 1.3e-10
-//    either way). The refactorisation checks below then see unscaled rows, which is again fine
-//    for dimensionless rows; like sparse-lu, klu does not equilibrate a badly scaled matrix.
-//    -1 rather than 0 also skips KLU's validation pass over the input inside every
-//    klu_refactor (7% of a P3 Newton iteration): the input is an Eigen compressed matrix, whose
-//    column pointers are monotone and row indices sorted, unique and in range by construction;
-//  - tol 0.001 (the default preference for diagonal pivots): 0.01 to 1 changed neither the fill
-//    nor the time.
+// Settings (chosen by timing the alternatives; docs/linear-solvers.md, "klu"):
+//  - ordering AMD (the default): COLAMD makes more fill on the block;
+//  - BTF on (the default): a fixed-load step's constraint row has one entry, in the dlambda
+//    column, so it splits off as a 1 x 1 block and the load column stays outside the LU factors;
+//  - scale -1, not the default 2: the formulations already make every row dimensionless
+//    (docs/method.md section 2), so KLU's row scaling buys nothing; -1 rather than 0 also skips
+//    KLU's validation pass over the input inside every klu_refactor (an Eigen compressed matrix
+//    is valid by construction);
+//  - tol 0.001 (the default preference for diagonal pivots).
 class KluSolver final : public PatternTrackingSolver {
  public:
   KluSolver() {
@@ -327,15 +304,13 @@ class KluSolver final : public PatternTrackingSolver {
   // (klu_rcond, min |u_kk| / max |u_kk|: such a pivot is rounding noise). rcond is not invariant
   // to column scaling: for a matrix whose unknowns differ by ~1e16 in scale every
   // refactorisation would be redone in full (correct, just slower). Our unknowns are scaled
-  // (METHOD.md section 2).
+  // (docs/method.md section 2).
   //
-  // Measured on the block's Newton sequences (n = 50 and 100): fresh factorisations kept
-  // rcond >= 9e-9, residuals <= 7e-13. Refactorisations with the first pivot order drift as the
-  // contacts settle, rcond falling ~10x per iteration, and the residual follows: 3e-12 at rcond
-  // 6e-16 (accepted), 1.4e-10 at 2e-18 and 5e-8 at 4e-27 (both rejected). A pivot-growth test
-  // (klu_rgrowth) catches the same cases here but costs a pass over A and U plus a rescaling,
-  // measured at 40% of a refactorisation on P3: it is left out. An inexact Newton direction
-  // costs at most iterations, never the answer, which the verdict judges.
+  //
+  // Refactorisations with the first pivot order drift as the contacts settle, and the residual
+  // follows rcond (docs/linear-solvers.md, "klu"). A pivot-growth test (klu_rgrowth) would catch
+  // the same cases at a much higher cost per refactorisation, so it is left out: an inexact
+  // Newton direction costs at most iterations, never the answer, which the verdict judges.
   static constexpr double kMinRefactorRcond = std::numeric_limits<double>::epsilon();
 
   bool RefactorIsSound(const SpMat& a) {
@@ -374,7 +349,7 @@ class KluSolver final : public PatternTrackingSolver {
 
 std::vector<std::string> LinearSolverNames() {
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
-  // The condensed Cholesky first: the fastest on every problem of the suite (README, figures),
+  // The condensed Cholesky first: the fastest on every problem of the suite (docs/linear-solvers.md),
   // exact through refinement, and KLU (its fallback) where a system has no usable structure.
   // KLU next: the fastest LU, with the refactorisation path that suits Newton's fixed pattern.
   return {"cholmod", "klu", "sparse-lu", "umfpack"};

@@ -1,4 +1,4 @@
-// The one verdict (METHOD.md section 7): whether a step's answer solves the ORIGINAL problem
+// The one verdict (docs/method.md section 7): whether a step's answer solves the ORIGINAL problem
 // (9)-(11) plus the step constraint, computed from the model alone. No formulation's own
 // stopping test enters here.
 #pragma once
@@ -11,7 +11,7 @@ struct Verdict {
   // ||grad pi(u) - lambda f - grad phi(u)^T r||_inf / max(1, ||lambda f||_inf), (9).
   double eq_res = 0.0;
   // ||min(g / L, -r / R)||_inf with g = -phi(u) from the model, (10)-(11) in the scaled
-  // variables of METHOD.md section 2 (a gap and a reaction are compared only after scaling).
+  // variables of docs/method.md section 2 (a gap and a reaction are compared only after scaling).
   double comp_res = 0.0;
   // max(0, -min_p g_p / L, max_p r_p / R): no penetration, no adhesion.
   double feas_res = 0.0;
