@@ -20,6 +20,7 @@
 #include "harness/snapshots.h"
 #include "io/problem_file.h"
 #include "model/complementarity_model.h"
+#include "path/near_start.h"
 #include "path/path.h"
 #include "path/replay.h"
 #include "problems/problem.h"
@@ -413,8 +414,7 @@ int Run(const std::vector<std::string>& args) {
                      problem.name + "' is traced by arc length");
   }
 
-  // --start near: the reference solution, perturbed by near_offset (relative, per entry, with
-  // the fixed pattern sin(i + 1) so that runs are reproducible).
+  // --start near: the reference formulation's solution, perturbed (near_start.h).
   std::optional<State> near;
   if (a.start_near) {
     if (problem.loading != LoadingKind::kFixedLoad) {
@@ -422,15 +422,14 @@ int Run(const std::vector<std::string>& args) {
                        "' is traced by arc length");
     }
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
-    const PathSummary solved = Trace(problem, *reference, options, nullptr);
-    if (solved.status != Status::kConverged) {
+    std::string why;
+    near.emplace();
+    if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model),
+                           problem.load, *reference, options, a.near_offset, &*near, &why)) {
       std::fprintf(stderr, "contactbench: --start near: the reference solve failed (%s)\n",
-                   solved.message.c_str());
+                   why.c_str());
       return kExitFailure;
     }
-    near = solved.final_state;
-    for (int i = 0; i < near->u.size(); ++i) near->u[i] *= 1.0 + a.near_offset * std::sin(i + 1.0);
-    for (int i = 0; i < near->r.size(); ++i) near->r[i] *= 1.0 + a.near_offset * std::sin(i + 2.0);
   }
   RecordFiles files(a.out);
   RunRecorder recorder(&files, problem,
