@@ -1,10 +1,8 @@
 #include "harness/cli.h"
 
 #include <algorithm>
-#include <atomic>
 #include <climits>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +14,7 @@
 #include <vector>
 
 #include "formulations/registry.h"
+#include "harness/interrupt.h"
 #include "harness/records.h"
 #include "harness/snapshots.h"
 #include "io/problem_file.h"
@@ -29,9 +28,6 @@
 namespace cb::harness {
 
 namespace {
-
-std::atomic<bool> g_interrupted{false};
-extern "C" void OnSignal(int) { g_interrupted.store(true); }
 
 std::string Join(const std::vector<std::string>& items) {
   std::string out;
@@ -314,9 +310,7 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.locate_kinks = a.locate_kinks;
   options.bifurcations = a.bifurcations;
   options.controls.time_limit_s = a.time_limit;
-  options.controls.interrupted = [] { return g_interrupted.load(); };
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
+  options.controls.interrupted = [] { return InterruptRequested(); };
   return options;
 }
 
