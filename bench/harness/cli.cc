@@ -16,9 +16,9 @@
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
 #include "harness/records.h"
+#include "harness/records_doc.h"
 #include "harness/snapshots.h"
 #include "io/problem_file.h"
-#include "model/complementarity_model.h"
 #include "path/near_start.h"
 #include "path/path.h"
 #include "path/replay.h"
@@ -55,6 +55,7 @@ constexpr const char* kUsage = R"(usage:
                    [--solver S] [--eta E] [--tol T] [--linear-solver NAME] [--time-limit SECONDS]
                    [--set KEY=VALUE ...] [--option FORMULATION:KEY=VALUE ...]
   contactbench export (--problem NAME | --problem-file F.json) [--set KEY=VALUE ...] --out F.json
+  contactbench schema
   contactbench help
 
 run writes DIR/steps.csv, iterations.csv, kinks.csv, critical.csv, solution.csv and
@@ -73,6 +74,7 @@ iterations.csv, the reference path's kinks.csv, and runs.csv (one row per formul
 --problem-file reads a problem file (a truss, a plane-stress Q4 mesh, or an LCP; see
 docs/problem-files.md); its --set keys are length_scale, force_scale and load or arc_length,
 steps. export writes a named problem (or a problem file, normalised) as a problem file.
+schema prints the columns of every record file as markdown (the tables of docs/records.md).
 Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
 4 interrupted (records kept).
 --start near (fixed-load problems, e.g. P1): the solve starts from the solution of implicit-fb
@@ -95,7 +97,7 @@ struct RunArguments {
   std::optional<int> steps;
   std::optional<double> arc_length;
   StartKind start = StartKind::kWarm;
-  bool start_near = false;   // run --start near: a warm start near a reference solution
+  bool start_near = false;  // run --start near: a warm start near a reference solution
   double near_offset = 1e-2;
   double tolerance = 1e-8;
   int max_cutbacks = 6;
@@ -374,23 +376,6 @@ Problem LoadProblem(const RunArguments& a) {
   }
 }
 
-// The last accepted state of a problem that is not a body: an LCP's z and w = M z + q.
-void WriteComplementaritySnapshot(const std::string& dir, const Problem& problem,
-                                  const State& state, int step) {
-  if (problem.body != nullptr ||
-      dynamic_cast<const ComplementarityModel*>(problem.model.get()) == nullptr) {
-    return;
-  }
-  Vec w;
-  problem.model->InternalForce(state.u, &w);
-  CsvWriter solution(dir + "/solution.csv", {"step", "index", "z", "w"});
-  for (int i = 0; i < problem.model->num_dofs(); ++i) {
-    CsvWriter::Row row;
-    row << step << i << state.u[i] << w[i];
-    solution.Write(row);
-  }
-}
-
 int Run(const std::vector<std::string>& args) {
   RunArguments a = ParseArguments(args, false);
   Problem problem = LoadProblem(a);
@@ -418,8 +403,8 @@ int Run(const std::vector<std::string>& args) {
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
     std::string why;
     near.emplace();
-    if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model),
-                           problem.load, *reference, options, a.near_offset, &*near, &why)) {
+    if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model), problem.load,
+                           *reference, options, a.near_offset, &*near, &why)) {
       std::fprintf(stderr, "contactbench: --start near: the reference solve failed (%s)\n",
                    why.c_str());
       return kExitFailure;
@@ -430,29 +415,13 @@ int Run(const std::vector<std::string>& args) {
                        {problem.name, formulation->name(), formulation->solver(),
                         formulation->settings(), a.start_near ? "near" : ToString(a.start), "run"},
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
-  {
-    // The problem's parameters, reconstruction choices included, beside its records.
-    CsvWriter parameters(a.out + "/parameters.csv", {"problem", "name", "value", "doc"});
-    for (const auto& e : problem.parameters.entries()) {
-      CsvWriter::Row row;
-      row << problem.name << e.name << e.value << e.doc;
-      parameters.Write(row);
-    }
-    CsvWriter::Row dofs, pairs;
-    dofs << problem.name << "num_dofs" << std::to_string(problem.model->num_dofs())
-         << "d, displacement unknowns (model size)";
-    pairs << problem.name << "num_pairs" << std::to_string(problem.model->num_pairs())
-          << "nc, contact pairs (model size)";
-    parameters.Write(dofs);
-    parameters.Write(pairs);
-  }
+  WriteParameters(a.out, problem);
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary =
       Trace(problem, *formulation, options, &observers, near ? &*near : nullptr);
-  WriteSnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
+  WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
   snapshots.Save(summary.final_state, summary.accepted_steps, "final");
-  WriteComplementaritySnapshot(a.out, problem, summary.final_state, summary.accepted_steps);
   std::fprintf(stderr,
                "%s %s: %s (%d accepted steps, %d attempts, %d kinks, %d limit points, "
                "%d bifurcation points, %d branch switches) -> %s\n",
@@ -484,9 +453,7 @@ int Compare(const std::vector<std::string>& args) {
                                   : ConstraintKind::kArcLength;
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
-  CsvWriter runs(a.out + "/runs.csv", {"problem", "formulation", "solver", "start", "mode",
-                                       "settings", "status", "attempts", "accepted", "message",
-                                       "time_limit_s", "tolerance"});
+  RecordWriter<RunOutcomeRow> runs(a.out, RunsSchema());
 
   // The reference path: the work every formulation is given in replay mode (warm start,
   // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
@@ -518,42 +485,37 @@ int Compare(const std::vector<std::string>& args) {
 
   for (const auto& formulation : formulations) {
     for (StartKind start : a.starts) {
-      CsvWriter::Row row;
-      row << problem.name << formulation->name() << formulation->solver() << ToString(start)
-          << a.mode << formulation->settings();
+      const RunLabel label{problem.name,          formulation->name(),
+                           formulation->solver(), formulation->settings(),
+                           ToString(start),       a.mode};
       if (!formulation->Supports(kind)) {
         const std::string why = formulation->name() + " cannot express the step constraint '" +
                                 std::string(ToString(kind)) + "'";
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
-        row << "skipped" << 0 << 0 << why << a.time_limit << a.tolerance;
-        runs.Write(row);
+        runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
         continue;
       }
-      RunRecorder recorder(&files, problem,
-                           {problem.name, formulation->name(), formulation->solver(),
-                            formulation->settings(), ToString(start), a.mode},
+      RunRecorder recorder(&files, problem, label,
                            a.mode == "replay" ? static_cast<int>(path.states.size()) : total);
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
       PathSummary s;
       try {
-        s = a.mode == "replay" ? ReplayPath(*problem.model, problem.scales,
-                                            ZeroState(*problem.model), path, *formulation,
-                                            run_options, &recorder)
-                               : Trace(problem, *formulation, run_options, &recorder);
+        s = a.mode == "replay"
+                ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model), path,
+                             *formulation, run_options, &recorder)
+                : Trace(problem, *formulation, run_options, &recorder);
       } catch (const std::invalid_argument& e) {
         // A formulation refusing the problem (dense SLSQP above its size limit) is recorded as
         // skipped with its reason; the other formulations still run.
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), e.what());
-        row << "skipped" << recorder.attempts() << recorder.accepted() << e.what() << a.time_limit
-            << a.tolerance;
-        runs.Write(row);
+        runs.Write({label, "skipped", recorder.attempts(), recorder.accepted(), e.what(),
+                    a.time_limit, a.tolerance});
         continue;
       }
-      row << ToString(s.status) << recorder.attempts() << recorder.accepted() << s.message
-          << a.time_limit << a.tolerance;
-      runs.Write(row);
+      runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
+                  a.time_limit, a.tolerance});
       if (s.status == Status::kStoppedByCaller) return kExitInterrupted;
     }
   }
@@ -614,6 +576,12 @@ int Export(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+// Prints the record files' columns (docs/records.md's generated section).
+int Schema() {
+  std::cout << RecordsMarkdown();
+  return kExitOk;
+}
+
 }  // namespace
 
 int Main(int argc, char** argv) {
@@ -629,7 +597,9 @@ int Main(int argc, char** argv) {
     if (command == "run") return Run(args);
     if (command == "compare") return Compare(args);
     if (command == "export") return Export(args);
-    throw UsageError("unknown command '" + command + "' (valid: list, run, compare, export, help)");
+    if (command == "schema") return Schema();
+    throw UsageError("unknown command '" + command +
+                     "' (valid: list, run, compare, export, schema, help)");
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n" << kUsage;
     return kExitBadArguments;
