@@ -1,13 +1,9 @@
 #include "harness/cli.h"
 
-#include <algorithm>
-#include <climits>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,6 +11,7 @@
 
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
+#include "harness/options.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
 #include "harness/snapshots.h"
@@ -28,269 +25,6 @@
 namespace cb::harness {
 
 namespace {
-
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
-// A usage error: reported with exit status 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-constexpr const char* kUsage = R"(usage:
-  contactbench list
-  contactbench run (--problem NAME | --problem-file F.json) --formulation NAME --out DIR
-                   [--solver newton|dogleg|quasi-newton] [--eta 1|2|3|4]
-                   [--steps N] [--arc-length THETA] [--start warm|cold|near] [--tol T]
-                   [--near-offset DELTA]
-                   [--linear-solver NAME] [--max-cutbacks N] [--no-kinks]
-                   [--bifurcations off|detect|switch] [--save-every N]
-                   [--time-limit SECONDS] [--set KEY=VALUE ...] [--option KEY=VALUE ...]
-  contactbench compare (--problem NAME | --problem-file F.json) --out DIR
-                   [--formulations A,B,...] [--starts warm,cold]
-                   [--mode replay|free] [--reference NAME] [--steps N] [--arc-length THETA]
-                   [--solver S] [--eta E] [--tol T] [--linear-solver NAME] [--time-limit SECONDS]
-                   [--set KEY=VALUE ...] [--option FORMULATION:KEY=VALUE ...]
-  contactbench export (--problem NAME | --problem-file F.json) [--set KEY=VALUE ...] --out F.json
-  contactbench schema
-  contactbench help
-
-run writes DIR/steps.csv, iterations.csv, kinks.csv, critical.csv, solution.csv and
-contacts.csv (the final state), and the saved states (every --save-every N-th step, each
-critical point, the final state) in snapshots.csv, snapshot_contacts.csv and vtk/*.vtu, *.pvd.
---bifurcations (default detect): watch the sign of the bordered stiffness's determinant and
-record limit and bifurcation points in critical.csv; switch also locates the first
-bifurcation point and continues on the other branch.
---set changes a problem parameter (see `contactbench list` for each problem's parameters);
---option passes a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); with
-compare, prefix it with the formulation's name.
-compare: every formulation x start traces the SAME steps (replay mode: each step starts from
-the reference path's previous accepted state; the reference is traced first by --reference,
-default implicit-fb) or its own path (free mode), into one long-format steps.csv and
-iterations.csv, the reference path's kinks.csv, and runs.csv (one row per formulation x start).
---problem-file reads a problem file (a truss, a plane-stress Q4 mesh, or an LCP; see
-docs/problem-files.md); its --set keys are length_scale, force_scale and load or arc_length,
-steps. export writes a named problem (or a problem file, normalised) as a problem file.
-schema prints the columns of every record file as markdown (the tables of docs/records.md).
-Exit status: 0 every step verified; 2 bad arguments; 3 stopped on a failure (records kept);
-4 interrupted (records kept).
---start near (fixed-load problems, e.g. P1): the solve starts from the solution of implicit-fb
-(eta 1, Newton) perturbed by the relative offset DELTA (default 1e-2) with a fixed pattern,
-as the report's section 5.1 starts eta case 3 near the solution.
-)";
-
-struct RunArguments {
-  std::string problem;
-  std::string problem_file;
-  std::string formulation;                // run
-  std::vector<std::string> formulations;  // compare
-  std::vector<StartKind> starts;          // compare
-  std::string mode = "replay";            // compare
-  std::string reference = "implicit-fb";  // compare
-  std::string out;
-  FormulationConfig config;
-  // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
-  std::map<std::string, std::map<std::string, std::string>> options;
-  std::optional<int> steps;
-  std::optional<double> arc_length;
-  StartKind start = StartKind::kWarm;
-  bool start_near = false;  // run --start near: a warm start near a reference solution
-  double near_offset = 1e-2;
-  double tolerance = 1e-8;
-  int max_cutbacks = 6;
-  bool locate_kinks = true;
-  BifurcationMode bifurcations = BifurcationMode::kDetect;
-  int save_every = 0;
-  double time_limit = 0.0;
-  std::map<std::string, std::string> settings;
-};
-
-double ParseNumber(const std::string& option, const std::string& text) {
-  double v = 0.0;
-  try {
-    std::size_t used = 0;
-    v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-  } catch (const std::exception&) {
-    throw UsageError(option + ": '" + text + "' is not a number");
-  }
-  if (!std::isfinite(v)) throw UsageError(option + ": must be finite, got '" + text + "'");
-  return v;
-}
-
-int ParseInteger(const std::string& option, const std::string& text) {
-  const double v = ParseNumber(option, text);
-  // Range first: converting a double outside int's range is undefined.
-  if (v != std::floor(v) || v < INT_MIN || v > INT_MAX) {
-    throw UsageError(option + ": '" + text + "' is not an integer in range");
-  }
-  return static_cast<int>(v);
-}
-
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::size_t end = comma == std::string::npos ? text.size() : comma;
-    if (end > start) items.push_back(text.substr(start, end - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return items;
-}
-
-StartKind ParseStart(const std::string& option, const std::string& s) {
-  if (s == "warm") return StartKind::kWarm;
-  if (s == "cold") return StartKind::kCold;
-  throw UsageError(option + ": '" + s + "' is not one of: warm, cold");
-}
-
-// Arguments of `run` (compare = false) or `compare` (compare = true).
-RunArguments ParseArguments(const std::vector<std::string>& args, bool compare) {
-  RunArguments a;
-  std::vector<std::string> seen;  // options that take one value: refused when repeated
-  auto value = [&](std::size_t& i) -> const std::string& {
-    if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
-    if (args[i] != "--set" && args[i] != "--option") {
-      if (std::find(seen.begin(), seen.end(), args[i]) != seen.end()) {
-        throw UsageError(args[i] + " is given twice");
-      }
-      seen.push_back(args[i]);
-    }
-    return args[++i];
-  };
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& o = args[i];
-    if (o == "--problem") {
-      a.problem = value(i);
-    } else if (o == "--problem-file") {
-      a.problem_file = value(i);
-    } else if (o == "--formulation" && !compare) {
-      a.formulation = value(i);
-    } else if (o == "--formulations" && compare) {
-      a.formulations = SplitList(value(i));
-      for (const auto& f : a.formulations) {
-        const auto names = FormulationNames();
-        if (std::find(names.begin(), names.end(), f) == names.end()) {
-          throw UsageError("--formulations: unknown formulation '" + f +
-                           "' (valid: " + Join(names) + ")");
-        }
-      }
-    } else if (o == "--starts" && compare) {
-      for (const auto& s : SplitList(value(i))) a.starts.push_back(ParseStart(o, s));
-    } else if (o == "--mode" && compare) {
-      a.mode = value(i);
-      if (a.mode != "replay" && a.mode != "free") {
-        throw UsageError("--mode: '" + a.mode + "' is not one of: replay, free");
-      }
-    } else if (o == "--reference" && compare) {
-      a.reference = value(i);
-    } else if (o == "--out") {
-      a.out = value(i);
-    } else if (o == "--solver") {
-      a.config.solver = value(i);
-      const auto names = EquationSolverNames();
-      if (std::find(names.begin(), names.end(), a.config.solver) == names.end()) {
-        throw UsageError("--solver: unknown solver '" + a.config.solver +
-                         "' (valid: " + Join(names) + ")");
-      }
-    } else if (o == "--eta") {
-      a.config.eta = ParseInteger(o, value(i));
-      if (a.config.eta < 1 || a.config.eta > 4) throw UsageError("--eta: must be 1, 2, 3 or 4");
-    } else if (o == "--steps") {
-      a.steps = ParseInteger(o, value(i));
-      if (*a.steps <= 0) throw UsageError("--steps: must be a positive integer");
-    } else if (o == "--arc-length") {
-      a.arc_length = ParseNumber(o, value(i));
-      if (!(*a.arc_length > 0.0)) throw UsageError("--arc-length: must be positive");
-    } else if (o == "--start" && !compare) {
-      const std::string& start = value(i);
-      a.start_near = start == "near";
-      a.start = a.start_near ? StartKind::kWarm : ParseStart(o, start);
-    } else if (o == "--near-offset" && !compare) {
-      a.near_offset = ParseNumber(o, value(i));
-      if (!(a.near_offset >= 0.0)) throw UsageError("--near-offset: must be >= 0");
-    } else if (o == "--tol") {
-      a.tolerance = ParseNumber(o, value(i));
-      if (!(a.tolerance > 0.0)) throw UsageError("--tol: must be positive");
-    } else if (o == "--linear-solver") {
-      a.config.solver_options.linear_solver = value(i);
-      const auto names = LinearSolverNames();
-      if (std::find(names.begin(), names.end(), a.config.solver_options.linear_solver) ==
-          names.end()) {
-        throw UsageError("--linear-solver: unknown '" + a.config.solver_options.linear_solver +
-                         "' (valid: " + Join(names) + ")");
-      }
-    } else if (o == "--max-cutbacks" && !compare) {
-      a.max_cutbacks = ParseInteger(o, value(i));
-      if (a.max_cutbacks < 0) throw UsageError("--max-cutbacks: must be >= 0");
-    } else if (o == "--no-kinks" && !compare) {
-      a.locate_kinks = false;
-    } else if (o == "--bifurcations" && !compare) {
-      const std::string& mode = value(i);
-      if (!ParseBifurcationMode(mode, &a.bifurcations)) {
-        throw UsageError("--bifurcations: unknown '" + mode + "' (valid: off, detect, switch)");
-      }
-    } else if (o == "--save-every" && !compare) {
-      a.save_every = ParseInteger(o, value(i));
-      if (a.save_every < 0) throw UsageError("--save-every: must be >= 0");
-    } else if (o == "--time-limit") {
-      a.time_limit = ParseNumber(o, value(i));
-      if (!(a.time_limit > 0.0)) throw UsageError("--time-limit: must be positive");
-    } else if (o == "--option") {
-      const std::string& kv = value(i);
-      const auto eq = kv.find('=');
-      const auto colon = kv.find(':');
-      const bool prefixed = colon != std::string::npos && colon < eq;
-      if (eq == std::string::npos || eq == 0 || (compare && !prefixed)) {
-        throw UsageError(std::string("--option: expected ") +
-                         (compare ? "FORMULATION:KEY=VALUE" : "KEY=VALUE") + ", got '" + kv + "'");
-      }
-      const std::string owner = prefixed ? kv.substr(0, colon) : "";
-      const std::string key = prefixed ? kv.substr(colon + 1, eq - colon - 1) : kv.substr(0, eq);
-      a.options[owner][key] = kv.substr(eq + 1);
-    } else if (o == "--set") {
-      const std::string& kv = value(i);
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) {
-        throw UsageError("--set: expected KEY=VALUE, got '" + kv + "'");
-      }
-      a.settings[kv.substr(0, eq)] = kv.substr(eq + 1);
-    } else {
-      throw UsageError("unknown option '" + o + "'");
-    }
-  }
-  if (!a.problem.empty() && !a.problem_file.empty()) {
-    throw UsageError("give either --problem or --problem-file, not both");
-  }
-  if (a.problem.empty() && a.problem_file.empty()) {
-    throw UsageError("--problem NAME or --problem-file F.json is required (valid names: " +
-                     Join(ProblemNames()) + ")");
-  }
-  if (!compare && a.formulation.empty()) {
-    throw UsageError("--formulation is required (valid: " + Join(FormulationNames()) + ")");
-  }
-  if (compare && a.formulations.empty()) {
-    for (const auto& info : FormulationRegistry()) {
-      if (info.available) a.formulations.push_back(info.name);
-    }
-  }
-  if (compare && a.starts.empty()) a.starts = {StartKind::kWarm};
-  if (a.out.empty()) throw UsageError("--out DIR is required");
-  for (const auto& [owner, kv] : a.options) {
-    if (owner.empty()) continue;
-    const auto names = FormulationNames();
-    if (std::find(names.begin(), names.end(), owner) == names.end()) {
-      throw UsageError("--option: unknown formulation '" + owner + "' (valid: " + Join(names) +
-                       ")");
-    }
-  }
-  return a;
-}
 
 // The configuration of formulation `name`: the common settings plus its own --option values.
 FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
@@ -376,8 +110,7 @@ Problem LoadProblem(const RunArguments& a) {
   }
 }
 
-int Run(const std::vector<std::string>& args) {
-  RunArguments a = ParseArguments(args, false);
+int Run(const RunArguments& a) {
   Problem problem = LoadProblem(a);
   std::unique_ptr<Formulation> formulation;
   try {
@@ -433,8 +166,7 @@ int Run(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-int Compare(const std::vector<std::string>& args) {
-  RunArguments a = ParseArguments(args, true);
+int Compare(const RunArguments& a) {
   Problem problem = LoadProblem(a);
   std::vector<std::unique_ptr<Formulation>> formulations;
   std::unique_ptr<Formulation> reference;
@@ -523,37 +255,8 @@ int Compare(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-// export: --problem NAME or --problem-file F, --set, --out FILE (a problem file).
-int Export(const std::vector<std::string>& args) {
-  RunArguments a;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& o = args[i];
-    if (o != "--problem" && o != "--problem-file" && o != "--set" && o != "--out") {
-      throw UsageError("export: unknown option '" + o +
-                       "' (valid: --problem, --problem-file, --set, --out)");
-    }
-    if (i + 1 >= args.size()) throw UsageError(o + " needs a value");
-    const std::string& v = args[++i];
-    if (o == "--set") {
-      const auto eq = v.find('=');
-      if (eq == std::string::npos || eq == 0) {
-        throw UsageError("--set: expected KEY=VALUE, got '" + v + "'");
-      }
-      a.settings[v.substr(0, eq)] = v.substr(eq + 1);
-      continue;
-    }
-    std::string& field = o == "--problem" ? a.problem : o == "--out" ? a.out : a.problem_file;
-    if (!field.empty()) throw UsageError(o + " is given twice");
-    field = v;
-  }
-  if (!a.problem.empty() && !a.problem_file.empty()) {
-    throw UsageError("give either --problem or --problem-file, not both");
-  }
-  if (a.problem.empty() && a.problem_file.empty()) {
-    throw UsageError("--problem NAME or --problem-file F.json is required (valid names: " +
-                     Join(ProblemNames()) + ")");
-  }
-  if (a.out.empty()) throw UsageError("--out F.json is required");
+// Writes the problem as a problem file.
+int Export(const RunArguments& a) {
   const Problem problem = LoadProblem(a);
   std::string text;
   try {
@@ -582,26 +285,57 @@ int Schema() {
   return kExitOk;
 }
 
+int Execute(Command command, const RunArguments& a) {
+  switch (command) {
+    case kList:
+      return List();
+    case kRun:
+      return Run(a);
+    case kCompare:
+      return Compare(a);
+    case kExport:
+      return Export(a);
+    case kSchema:
+      return Schema();
+  }
+  return kExitBadArguments;
+}
+
+std::string CommandNames() {
+  std::string names;
+  for (const CommandInfo& c : Commands()) names += std::string(c.name) + ", ";
+  return names + "help";
+}
+
 }  // namespace
 
 int Main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  const CommandInfo* command = nullptr;
   try {
     if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-      std::cout << kUsage;
+      std::cout << UsageText();
       return args.empty() ? kExitBadArguments : kExitOk;
     }
-    const std::string command = args[0];
-    args.erase(args.begin());
-    if (command == "list") return List();
-    if (command == "run") return Run(args);
-    if (command == "compare") return Compare(args);
-    if (command == "export") return Export(args);
-    if (command == "schema") return Schema();
-    throw UsageError("unknown command '" + command +
-                     "' (valid: list, run, compare, export, schema, help)");
+    command = FindCommand(args[0]);
+    if (command == nullptr) {
+      throw UsageError("unknown command '" + args[0] + "' (valid: " + CommandNames() + ")");
+    }
+    const RunArguments a =
+        ParseArguments(command->command, std::vector<std::string>(args.begin() + 1, args.end()));
+    if (a.help) {
+      std::cout << CommandHelp(*command);
+      return kExitOk;
+    }
+    return Execute(command->command, a);
   } catch (const UsageError& e) {
-    std::cerr << "contactbench: " << e.what() << "\n" << kUsage;
+    std::cerr << "contactbench: " << e.what() << "\n";
+    if (command == nullptr) {
+      std::cerr << UsageText();
+    } else {
+      std::cerr << Synopsis(*command) << "`contactbench " << command->name
+                << " --help` describes the options.\n";
+    }
     return kExitBadArguments;
   } catch (const std::exception& e) {
     std::cerr << "contactbench: error: " << e.what() << "\n";
