@@ -422,8 +422,8 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
       throw UsageError(std::string(command_name) + ": unknown option '" + name +
                        "' (valid: " + Join(OptionNames(command)) + ")");
     }
-    if (!o->repeatable && !given.insert(name).second) throw UsageError(name + " is given twice");
-    given.insert(name);
+    const bool repeated = !given.insert(name).second;
+    if (repeated && !o->repeatable) throw UsageError(name + " is given twice");
     const bool flag = *o->placeholder == '\0';
     if (!flag && i + 1 >= args.size()) throw UsageError(name + " needs a value");
     o->parse(*o, flag ? std::string() : args[++i], &a);

@@ -369,7 +369,8 @@ const RecordSchema<NodeRow>& SnapshotsSchema() {
   static const RecordSchema<NodeRow> schema{
       "snapshots.csv",
       "",
-      "node x saved state (every `--save-every` steps, each critical point, the final state)",
+      "node x saved state (every `--save-every` steps, each limit and bifurcation point, the "
+      "final state)",
       {"run"},
       Concatenate({NodeStep(), NodeLabel(), NodeLambda()}, NodeColumns())};
   return schema;
