@@ -2,17 +2,20 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "harness/options.h"
 
 namespace {
 
@@ -21,8 +24,8 @@ struct Outcome {
   std::string output;  // stdout and stderr
 };
 
-Outcome RunCli(const std::string& arguments) {
-  const std::string command = std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>&1";
+// The output and exit status of a shell command.
+Outcome Capture(const std::string& command) {
   Outcome out;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return out;
@@ -31,6 +34,15 @@ Outcome RunCli(const std::string& arguments) {
   const int raw = pclose(pipe);
   out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return out;
+}
+
+Outcome RunCli(const std::string& arguments) {
+  return Capture(std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>&1");
+}
+
+// Only stdout: the help and the usage are printed there.
+Outcome RunCliStdout(const std::string& arguments) {
+  return Capture(std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>/dev/null");
 }
 
 std::filesystem::path TempDir(const std::string& name) {
@@ -52,6 +64,76 @@ TEST(CliTest, ListNamesProblemsFormulationsAndSolvers) {
   for (const char* name : {"block", "arch-flat", "arch-curved", "implicit-fb", "newton", "dogleg",
                            "quasi-newton", "length_scale"}) {
     EXPECT_NE(o.output.find(name), std::string::npos) << name;
+  }
+}
+
+using cb::harness::NameAndValue;
+
+// The option names that start the lines of a --help's option list.
+std::set<std::string> ListedOptions(const std::string& help) {
+  std::set<std::string> names;
+  std::istringstream in(help.substr(help.find("\noptions:\n")));
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("  --", 0) == 0) names.insert(line.substr(2, line.find(' ', 2) - 2));
+  }
+  return names;
+}
+
+TEST(CliTest, EveryCommandsHelpListsExactlyItsOptionsAndExits0) {
+  for (const auto& command : cb::harness::Commands()) {
+    const Outcome o = RunCliStdout(std::string(command.name) + " --help");
+    EXPECT_EQ(o.status, 0) << command.name << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind(std::string("usage: contactbench ") + command.name, 0), 0u)
+        << o.output;
+    std::set<std::string> expected;
+    for (const auto& option : cb::harness::Options()) {
+      if ((option.commands & command.command) == 0) continue;
+      expected.insert(option.name);
+      EXPECT_NE(o.output.find(NameAndValue(option)), std::string::npos)
+          << command.name << " --help lacks " << NameAndValue(option) << "\n"
+          << o.output;
+    }
+    EXPECT_EQ(ListedOptions(o.output), expected) << command.name << "\n" << o.output;
+  }
+  // --help wins over the missing required options.
+  EXPECT_EQ(RunCliStdout("run --problem two-bar --help").status, 0);
+}
+
+TEST(CliTest, TheUsageShowsEveryCommandAndEveryOption) {
+  for (const char* args : {"help", "--help"}) {
+    const Outcome o = RunCliStdout(args);
+    EXPECT_EQ(o.status, 0) << o.output;
+    for (const auto& command : cb::harness::Commands()) {
+      EXPECT_NE(o.output.find(std::string("contactbench ") + command.name + " "), std::string::npos)
+          << command.name;
+    }
+    for (const auto& option : cb::harness::Options()) {
+      EXPECT_NE(o.output.find(NameAndValue(option)), std::string::npos) << NameAndValue(option);
+    }
+  }
+  EXPECT_EQ(RunCliStdout("").status, 2);  // no command: the usage, and status 2
+}
+
+TEST(CliTest, OptionsOfAnotherCommandAreRefused) {
+  const auto dir = TempDir("other_command").string();
+  struct Case {
+    std::string args;
+    std::string expected;
+  } cases[] = {
+      {"run --problem two-bar --formulation implicit-fb --starts cold --out " + dir,
+       "run: unknown option '--starts'"},
+      {"compare --problem two-bar --formulation implicit-fb --out " + dir,
+       "compare: unknown option '--formulation'"},
+      {"compare --problem two-bar --save-every 3 --out " + dir, "--save-every"},
+      {"list --steps 3", "list: unknown option '--steps'"},
+      {"run --problem two-bar --formulation implicit-fb --no-kinks --no-kinks --out " + dir,
+       "--no-kinks is given twice"},
+      {"run --problem two-bar --formulation implicit-fb --out", "--out needs a value"},
+  };
+  for (const auto& c : cases) {
+    const Outcome o = RunCli(c.args);
+    EXPECT_EQ(o.status, 2) << c.args << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.args << "\n" << o.output;
   }
 }
 
@@ -409,7 +491,8 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
   std::filesystem::remove_all(dir);
   const std::string command = std::string(CONTACTBENCH_BINARY) +
                               " run --problem two-bar --formulation implicit-fb --steps 20"
-                              " --save-every 10 --out " + dir.string() + " 2>/dev/null";
+                              " --save-every 10 --out " +
+                              dir.string() + " 2>/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0);
   // Steps 10 and 20, the limit point passed in step 10, and the final state.
   std::ifstream pvd(dir / "vtk" / "two-bar.pvd");

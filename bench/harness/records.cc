@@ -4,38 +4,15 @@
 
 #include <cstdio>
 
-#include "core/types.h"
+#include "model/complementarity_model.h"
 
 namespace cb::harness {
 
-RecordFiles::RecordFiles(const std::string& directory) : directory_(directory) {
-  steps_ = std::make_unique<CsvWriter>(
-      directory + "/steps.csv",
-      std::vector<std::string>{"problem",        "formulation",    "solver",        "start",
-                               "step",           "lambda",         "control_disp",  "iterations",
-                               "residual_evals", "jacobian_evals", "linear_solves", "time_s",
-                               "found",          "verified",       "eq_res",        "comp_res",
-                               "feas_res",       "step_res",       "n_contact",     "kink",
-                               "attempt",        "accepted",       "reversed",      "constraint",
-                               "arc_length",     "status",         "settings",      "length_scale",
-                               "force_scale",    "mode",           "unstable_modes", "branch",
-                               "branch_switch",  "message"});
-  iterations_ = std::make_unique<CsvWriter>(
-      directory + "/iterations.csv",
-      std::vector<std::string>{"problem", "formulation", "solver", "start", "step", "attempt",
-                               "iteration", "merit", "residual_inf", "comp_res", "step_length",
-                               "mode"});
-  kinks_ = std::make_unique<CsvWriter>(
-      directory + "/kinks.csv",
-      std::vector<std::string>{"problem", "formulation", "start", "step", "pair", "lambda",
-                               "control_disp", "verified", "between", "iterations", "eq_res",
-                               "comp_res", "feas_res", "step_res", "time_s", "status", "message"});
-  critical_ = std::make_unique<CsvWriter>(
-      directory + "/critical.csv",
-      std::vector<std::string>{"problem", "formulation", "start", "step", "kind", "nonsmooth",
-                               "lambda", "control_disp", "located", "bisections", "verified",
-                               "eq_res", "comp_res", "switched", "message"});
-}
+RecordFiles::RecordFiles(const std::string& directory)
+    : steps_(directory, StepsSchema()),
+      iterations_(directory, IterationsSchema()),
+      kinks_(directory, KinksSchema()),
+      critical_(directory, CriticalSchema()) {}
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
@@ -43,93 +20,92 @@ RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel la
   progress_ = isatty(STDERR_FILENO) == 1;
 }
 
-double RunRecorder::ControlDisplacement(const State& state) const {
-  return problem_.control_dof >= 0 ? state.u[problem_.control_dof] : 0.0;
-}
-
 void RunRecorder::OnAttempt(const StepAttempt& a) {
   ++attempts_;
-  const StepResult& res = a.result;
-  const bool found = res.status == Status::kConverged;
   if (!a.accepted) all_verified_ = false;
   if (a.accepted) ++accepted_;
-  CsvWriter::Row row;
-  row << label_.problem << label_.formulation << label_.solver << label_.start << a.step
-      << a.state.lambda << ControlDisplacement(a.state) << res.counts.iterations
-      << res.counts.residual_evals << res.counts.jacobian_evals << res.counts.linear_solves
-      << res.time_s << found << a.verdict.verified << a.verdict.eq_res << a.verdict.comp_res
-      << a.verdict.feas_res << a.verdict.step_res << a.n_contact << a.kinks << a.attempt
-      << a.accepted << a.reversed << ToString(a.kind) << a.arc_length << ToString(res.status)
-      << label_.settings << problem_.scales.length << problem_.scales.force << label_.mode
-      << a.stability << a.branch << a.branch_switch << res.message;
-  files_->steps().Write(row);
-  for (const IterationRecord& it : res.history) {
-    CsvWriter::Row r;
-    r << label_.problem << label_.formulation << label_.solver << label_.start << a.step
-      << a.attempt << it.iteration << it.merit << it.residual_inf << it.comp_res << it.step_length
-      << label_.mode;
-    files_->iterations().Write(r);
-  }
-  if (progress_) {
-    std::fprintf(stderr, "\r%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d   ",
-                 label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
-                 total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
-                 res.counts.iterations);
-    if (a.step == total_steps_ && (a.accepted || label_.mode != "run")) {
-      std::fprintf(stderr, "\n");
-    }
-    std::fflush(stderr);
-  }
+  files_->steps().Write({label_, problem_, a});
+  for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
+  if (progress_) ShowProgress(a);
 }
 
-void RunRecorder::OnKink(const KinkRecord& k) {
-  CsvWriter::Row row;
-  row << label_.problem << label_.formulation << label_.start << k.step << k.pair << k.state.lambda
-      << ControlDisplacement(k.state) << k.verdict.verified << k.between
-      << k.result.counts.iterations << k.verdict.eq_res << k.verdict.comp_res << k.verdict.feas_res
-      << k.verdict.step_res << k.result.time_s << ToString(k.result.status) << k.result.message;
-  files_->kinks().Write(row);
+void RunRecorder::ShowProgress(const StepAttempt& a) const {
+  std::fprintf(stderr, "\r%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d   ",
+               label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
+               total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
+               a.result.counts.iterations);
+  if (a.step == total_steps_ && (a.accepted || label_.mode != "run")) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
 }
+
+void RunRecorder::OnKink(const KinkRecord& k) { files_->kinks().Write({label_, problem_, k}); }
 
 void RunRecorder::OnCriticalPoint(const CriticalPointRecord& c) {
-  CsvWriter::Row row;
-  row << label_.problem << label_.formulation << label_.start << c.step << ToString(c.kind)
-      << c.nonsmooth << c.state.lambda << ControlDisplacement(c.state) << c.located
-      << c.bisections << c.verdict.verified << c.verdict.eq_res << c.verdict.comp_res
-      << c.switched << c.message;
-  files_->critical().Write(row);
+  files_->critical().Write({label_, problem_, c});
 }
 
-void WriteSnapshot(const std::string& directory, const Problem& problem, const State& state,
-                   int step) {
-  if (!problem.body) return;  // not a mechanical body: no nodes to write
-  const BodyContactModel& model = *problem.body;
+std::vector<NodeRow> NodeRows(const BodyContactModel& model, const State& state, int step,
+                              std::string_view label) {
   const ElasticBody& body = model.body();
-  const int dim = body.dim();
-  std::vector<std::string> columns = {"step", "node", "x", "y"};
-  if (dim == 3) columns.push_back("z");
-  columns.insert(columns.end(), {"ux", "uy"});
-  if (dim == 3) columns.push_back("uz");
-  CsvWriter solution(directory + "/solution.csv", columns);
+  std::vector<NodeRow> rows;
+  rows.reserve(body.num_nodes());
   for (int n = 0; n < body.num_nodes(); ++n) {
-    const Point x = body.reference(n);
-    const Point moved = body.Position(n, state.u);
-    CsvWriter::Row row;
-    row << step << n;
-    for (int c = 0; c < dim; ++c) row << x[c];
-    for (int c = 0; c < dim; ++c) row << moved[c] - x[c];
-    solution.Write(row);
+    rows.push_back({step, label, state.lambda, n, body.reference(n), body.Position(n, state.u)});
   }
+  return rows;
+}
+
+std::vector<PairRow> PairRows(const BodyContactModel& model, const State& state, int step,
+                              std::string_view label) {
   Vec phi;
   model.Gaps(state.u, &phi);
-  CsvWriter contacts(directory + "/contacts.csv",
-                     {"step", "pair", "node", "obstacle", "g", "r", "lambda"});
+  std::vector<PairRow> rows;
+  rows.reserve(model.num_pairs());
   for (int p = 0; p < model.num_pairs(); ++p) {
-    CsvWriter::Row row;
-    row << step << p << model.pairs()[p].node << model.pairs()[p].obstacle << -phi[p] << state.r[p]
-        << state.lambda;
-    contacts.Write(row);
+    const ContactPair& pair = model.pairs()[p];
+    rows.push_back({step, label, state.lambda, p, pair.node, pair.obstacle, -phi[p], state.r[p]});
   }
+  return rows;
+}
+
+namespace {
+
+void WriteBodyState(const std::string& directory, const BodyContactModel& model, const State& state,
+                    int step) {
+  RecordWriter<NodeRow> solution(directory, SolutionSchema(), model.body().dim());
+  for (const NodeRow& row : NodeRows(model, state, step, "final")) solution.Write(row);
+  RecordWriter<PairRow> contacts(directory, ContactsSchema());
+  for (const PairRow& row : PairRows(model, state, step, "final")) contacts.Write(row);
+}
+
+void WriteComplementarityState(const std::string& directory, const ComplementarityModel& model,
+                               const State& state, int step) {
+  Vec w;
+  model.InternalForce(state.u, &w);  // M z + q
+  RecordWriter<ComplementarityRow> solution(directory, ComplementaritySolutionSchema());
+  for (int i = 0; i < model.num_dofs(); ++i) solution.Write({step, i, state.u[i], w[i]});
+}
+
+}  // namespace
+
+void WriteFinalState(const std::string& directory, const Problem& problem, const State& state,
+                     int step) {
+  if (problem.body != nullptr) {
+    WriteBodyState(directory, *problem.body, state, step);
+  } else if (const auto* lcp = dynamic_cast<const ComplementarityModel*>(problem.model.get())) {
+    WriteComplementarityState(directory, *lcp, state, step);
+  }
+}
+
+void WriteParameters(const std::string& directory, const Problem& problem) {
+  RecordWriter<ParameterRow> parameters(directory, ParametersSchema());
+  for (const auto& e : problem.parameters.entries()) {
+    parameters.Write({problem.name, e.name, e.value, e.doc});
+  }
+  const std::string dofs = std::to_string(problem.model->num_dofs());
+  const std::string pairs = std::to_string(problem.model->num_pairs());
+  parameters.Write({problem.name, "num_dofs", dofs, "d, displacement unknowns (model size)"});
+  parameters.Write({problem.name, "num_pairs", pairs, "nc, contact pairs (model size)"});
 }
 
 }  // namespace cb::harness

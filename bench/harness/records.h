@@ -1,42 +1,36 @@
 // The run records of COMPARISON.md: long-format CSV, one row per step attempt, per iteration,
-// per kink, written and flushed as they are produced; solution and contact snapshots at the end.
-// One RecordFiles holds the files of an output directory; each run writes into them through a
-// RunRecorder that labels every row, so a comparison puts all its runs in one long table.
+// per kink, written and flushed as they are produced; the final state, the problem's
+// parameters and a comparison's outcomes at the end. One RecordFiles holds the files of an
+// output directory; each run writes into them through a RunRecorder that labels every row, so
+// a comparison puts all its runs in one long table. The columns are those of
+// record_schemas.h; docs/records.md describes them.
 #pragma once
 
-#include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
-#include "core/csv.h"
+#include "harness/record_schemas.h"
 #include "path/path.h"
 #include "problems/problem.h"
 
 namespace cb::harness {
-
-// Identifies a run in every row.
-struct RunLabel {
-  std::string problem;
-  std::string formulation;
-  std::string solver;
-  std::string settings;
-  std::string start;
-  std::string mode;  // "run" (contactbench run), "replay" or "free" (contactbench compare)
-};
 
 class RecordFiles {
  public:
   // Opens DIR/steps.csv, DIR/iterations.csv, DIR/kinks.csv and DIR/critical.csv (limit and
   // bifurcation points; the directory must exist).
   explicit RecordFiles(const std::string& directory);
-  const std::string& directory() const { return directory_; }
-  CsvWriter& steps() { return *steps_; }
-  CsvWriter& iterations() { return *iterations_; }
-  CsvWriter& kinks() { return *kinks_; }
-  CsvWriter& critical() { return *critical_; }
+  RecordWriter<AttemptRow>& steps() { return steps_; }
+  RecordWriter<IterationRow>& iterations() { return iterations_; }
+  RecordWriter<KinkRow>& kinks() { return kinks_; }
+  RecordWriter<CriticalRow>& critical() { return critical_; }
 
  private:
-  std::string directory_;
-  std::unique_ptr<CsvWriter> steps_, iterations_, kinks_, critical_;
+  RecordWriter<AttemptRow> steps_;
+  RecordWriter<IterationRow> iterations_;
+  RecordWriter<KinkRow> kinks_;
+  RecordWriter<CriticalRow> critical_;
 };
 
 class RunRecorder final : public PathObserver {
@@ -53,7 +47,7 @@ class RunRecorder final : public PathObserver {
   int accepted() const { return accepted_; }
 
  private:
-  double ControlDisplacement(const State& state) const;
+  void ShowProgress(const StepAttempt& attempt) const;
 
   RecordFiles* files_;
   const Problem& problem_;
@@ -65,8 +59,19 @@ class RunRecorder final : public PathObserver {
   bool progress_ = false;  // on a terminal only
 };
 
-// DIR/solution.csv and DIR/contacts.csv for a state (the last accepted one).
-void WriteSnapshot(const std::string& directory, const Problem& problem, const State& state,
-                   int step);
+// The rows of a body's state (step `step`, saved as `label`): one per node, one per pair.
+std::vector<NodeRow> NodeRows(const BodyContactModel& model, const State& state, int step,
+                              std::string_view label);
+std::vector<PairRow> PairRows(const BodyContactModel& model, const State& state, int step,
+                              std::string_view label);
+
+// The final state (the last accepted one, reached at step `step`): DIR/solution.csv and
+// DIR/contacts.csv for a body, DIR/solution.csv (z and w = M z + q) for an LCP.
+void WriteFinalState(const std::string& directory, const Problem& problem, const State& state,
+                     int step);
+
+// DIR/parameters.csv: the problem's parameters, reconstruction choices included, then the
+// model's sizes.
+void WriteParameters(const std::string& directory, const Problem& problem);
 
 }  // namespace cb::harness

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "harness/records.h"
+
 namespace cb::harness {
 
 namespace {
@@ -13,33 +15,21 @@ namespace {
 constexpr int kVtkLine = 3;
 constexpr int kVtkQuad = 9;
 
-std::vector<std::string> NodeColumns(int dim) {
-  std::vector<std::string> c = {"step", "label", "lambda", "node", "x", "y"};
-  if (dim == 3) c.push_back("z");
-  c.insert(c.end(), {"ux", "uy"});
-  if (dim == 3) c.push_back("uz");
-  return c;
-}
-
 }  // namespace
 
 SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
     : directory_(directory), problem_(problem), every_(every) {
   if (!problem_.body) return;
-  nodes_ = std::make_unique<CsvWriter>(directory + "/snapshots.csv",
-                                       NodeColumns(problem_.body->body().dim()));
-  contacts_ = std::make_unique<CsvWriter>(
-      directory + "/snapshot_contacts.csv",
-      std::vector<std::string>{"step", "label", "lambda", "pair", "node", "obstacle", "g", "r"});
+  nodes_ = std::make_unique<RecordWriter<NodeRow>>(directory, SnapshotsSchema(),
+                                                   problem_.body->body().dim());
+  contacts_ = std::make_unique<RecordWriter<PairRow>>(directory, SnapshotContactsSchema());
   std::filesystem::create_directories(directory + "/vtk");
   // The elements, so that plots can draw the deformed mesh from the CSV files alone.
-  CsvWriter cells(directory + "/cells.csv", {"cell", "corner", "node"});
+  RecordWriter<CellCornerRow> cells(directory, CellsSchema());
   const std::vector<std::vector<int>> all = problem_.body->body().Cells();
   for (std::size_t c = 0; c < all.size(); ++c) {
     for (std::size_t k = 0; k < all[c].size(); ++k) {
-      CsvWriter::Row row;
-      row << static_cast<int>(c) << static_cast<int>(k) << all[c][k];
-      cells.Write(row);
+      cells.Write({static_cast<int>(c), static_cast<int>(k), all[c][k]});
     }
   }
 }
@@ -55,26 +45,8 @@ void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
 
 void SnapshotWriter::Save(const State& state, int step, const std::string& label) {
   if (!problem_.body) return;
-  const BodyContactModel& model = *problem_.body;
-  const ElasticBody& body = model.body();
-  const int dim = body.dim();
-  for (int n = 0; n < body.num_nodes(); ++n) {
-    const Point x = body.reference(n);
-    const Point moved = body.Position(n, state.u);
-    CsvWriter::Row row;
-    row << step << label << state.lambda << n;
-    for (int c = 0; c < dim; ++c) row << x[c];
-    for (int c = 0; c < dim; ++c) row << moved[c] - x[c];
-    nodes_->Write(row);
-  }
-  Vec phi;
-  model.Gaps(state.u, &phi);
-  for (int p = 0; p < model.num_pairs(); ++p) {
-    CsvWriter::Row row;
-    row << step << label << state.lambda << p << model.pairs()[p].node
-        << model.pairs()[p].obstacle << -phi[p] << state.r[p];
-    contacts_->Write(row);
-  }
+  for (const NodeRow& row : NodeRows(*problem_.body, state, step, label)) nodes_->Write(row);
+  for (const PairRow& row : PairRows(*problem_.body, state, step, label)) contacts_->Write(row);
   char name[64];
   std::snprintf(name, sizeof name, "_%04d.vtu", static_cast<int>(saved_.size()));
   const std::string file = problem_.name + name;
@@ -106,8 +78,8 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
       << "      <DataArray type=\"Int32\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">"
       << step << "</DataArray>\n"
       << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << body.num_nodes() << "\" NumberOfCells=\""
-      << cells.size() << "\">\n"
+      << "    <Piece NumberOfPoints=\"" << body.num_nodes() << "\" NumberOfCells=\"" << cells.size()
+      << "\">\n"
       << "      <Points>\n"
       << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (int n = 0; n < body.num_nodes(); ++n) {
@@ -159,9 +131,9 @@ void SnapshotWriter::WritePvd() const {
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
     for (std::size_t k = 0; k < saved_.size(); ++k) {
-      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\""
-          << saved_[k].file << "\"/>  <!-- step " << saved_[k].step << ", " << saved_[k].label
-          << ", lambda " << saved_[k].lambda << " -->\n";
+      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\"" << saved_[k].file
+          << "\"/>  <!-- step " << saved_[k].step << ", " << saved_[k].label << ", lambda "
+          << saved_[k].lambda << " -->\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
   }

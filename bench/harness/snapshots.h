@@ -3,14 +3,15 @@
 // one row per node and saved state; DIR/snapshot_contacts.csv, one row per pair and saved
 // state) and as VTK files that open in ParaView (DIR/vtk/<problem>_NNNN.vtu, one per saved
 // state, collected by DIR/vtk/<problem>.pvd, rewritten after each save so that an interrupted
-// run leaves a valid collection). DIR/cells.csv lists the elements (cell, corner, node).
+// run leaves a valid collection). DIR/cells.csv lists the elements (cell, corner, node). The
+// CSV columns are those of record_schemas.h.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "core/csv.h"
+#include "harness/record_schemas.h"
 #include "path/path.h"
 #include "problems/problem.h"
 
@@ -43,7 +44,8 @@ class SnapshotWriter final : public PathObserver {
   std::string directory_;
   const Problem& problem_;
   int every_ = 0;
-  std::unique_ptr<CsvWriter> nodes_, contacts_;
+  std::unique_ptr<RecordWriter<NodeRow>> nodes_;
+  std::unique_ptr<RecordWriter<PairRow>> contacts_;
   std::vector<Saved> saved_;
 };
 

@@ -1,0 +1,468 @@
+#include "harness/options.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <set>
+
+#include "formulations/registry.h"
+#include "problems/problem.h"
+#include "solvers/linear_solver.h"
+
+namespace cb::harness {
+
+namespace {
+
+bool Contains(const std::vector<std::string>& items, const std::string& item) {
+  return std::find(items.begin(), items.end(), item) != items.end();
+}
+
+[[noreturn]] void Refuse(const Option& option, const std::string& why) {
+  throw UsageError(std::string(option.name) + ": " + why);
+}
+
+// --- values --------------------------------------------------------------------------------
+
+double ParseNumber(const Option& option, const std::string& text) {
+  double v = 0.0;
+  try {
+    std::size_t used = 0;
+    v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    Refuse(option, "'" + text + "' is not a number");
+  }
+  if (!std::isfinite(v)) Refuse(option, "must be finite, got '" + text + "'");
+  return v;
+}
+
+int ParseInteger(const Option& option, const std::string& text) {
+  const double v = ParseNumber(option, text);
+  // Range first: converting a double outside int's range is undefined.
+  if (v != std::floor(v) || v < INT_MIN || v > INT_MAX) {
+    Refuse(option, "'" + text + "' is not an integer in range");
+  }
+  return static_cast<int>(v);
+}
+
+double PositiveNumber(const Option& option, const std::string& text) {
+  const double v = ParseNumber(option, text);
+  if (!(v > 0.0)) Refuse(option, "must be positive");
+  return v;
+}
+
+int NonNegativeInteger(const Option& option, const std::string& text) {
+  const int v = ParseInteger(option, text);
+  if (v < 0) Refuse(option, "must be >= 0");
+  return v;
+}
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::size_t end = comma == std::string::npos ? text.size() : comma;
+    if (end > start) items.push_back(text.substr(start, end - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return items;
+}
+
+// `value` if it is one of the option's choices.
+const std::string& Choice(const Option& option, const std::string& value) {
+  const std::vector<std::string> valid = option.choices();
+  if (!Contains(valid, value))
+    Refuse(option, "unknown '" + value + "' (valid: " + Join(valid) + ")");
+  return value;
+}
+
+// KEY=VALUE into (key, value).
+std::pair<std::string, std::string> KeyValue(const Option& option, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0) Refuse(option, "expected KEY=VALUE, got '" + kv + "'");
+  return {kv.substr(0, eq), kv.substr(eq + 1)};
+}
+
+// [FORMULATION:]KEY=VALUE: a setting of the formulation named, or of every formulation.
+void FormulationOption(const Option& option, const std::string& text, bool prefix_required,
+                       RunArguments* a) {
+  const auto colon = text.find(':');
+  const auto eq = text.find('=');
+  const bool prefixed = colon != std::string::npos && colon < eq;
+  if (prefix_required && !prefixed) {
+    Refuse(option, "expected FORMULATION:KEY=VALUE, got '" + text + "'");
+  }
+  const std::string owner = prefixed ? text.substr(0, colon) : "";
+  if (prefixed && !Contains(FormulationNames(), owner)) {
+    Refuse(option, "unknown formulation '" + owner + "' (valid: " + Join(FormulationNames()) + ")");
+  }
+  const auto [key, value] = KeyValue(option, prefixed ? text.substr(colon + 1) : text);
+  a->options[owner][key] = value;
+}
+
+StartKind ParseStart(const std::string& text) {
+  return text == "cold" ? StartKind::kCold : StartKind::kWarm;
+}
+
+std::vector<std::string> Starts() { return {"warm", "cold"}; }
+std::vector<std::string> RunStarts() { return {"warm", "cold", "near"}; }
+std::vector<std::string> Modes() { return {"replay", "free"}; }
+std::vector<std::string> BifurcationModes() { return {"off", "detect", "switch"}; }
+
+// --- the table -------------------------------------------------------------------------------
+
+constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema;
+constexpr unsigned kProblemCommands = kRun | kCompare | kExport;
+constexpr unsigned kPathCommands = kRun | kCompare;
+
+std::vector<Option> MakeOptions() {
+  using A = RunArguments;
+  using O = const Option&;
+  using S = const std::string&;
+  return {
+      {"--problem", "NAME", kProblemCommands, Need::kProblem, false,
+       "a named problem (`contactbench list` shows each one's parameters)", ProblemNames,
+       [](O o, S v, A* a) { a->problem = Choice(o, v); }},
+      {"--problem-file", "F.json", kProblemCommands, Need::kProblem, false,
+       "a problem file: a truss, a plane-stress Q4 mesh, or an LCP (docs/problem-files.md)",
+       nullptr, [](O, S v, A* a) { a->problem_file = v; }},
+      {"--formulation", "NAME", kRun, Need::kRequired, false, "the formulation", FormulationNames,
+       [](O o, S v, A* a) { a->formulation = Choice(o, v); }},
+      {"--formulations", "A,B,...", kCompare, Need::kOptional, false,
+       "the formulations compared (default: every one built)", FormulationNames,
+       [](O o, S v, A* a) {
+         a->formulations = SplitList(v);
+         for (const auto& f : a->formulations) Choice(o, f);
+       }},
+      {"--out", "DIR", kPathCommands, Need::kRequired, false,
+       "the directory of the records (created if missing; docs/records.md)", nullptr,
+       [](O, S v, A* a) { a->out = v; }},
+      {"--out", "F.json", kExport, Need::kRequired, false, "the problem file to write", nullptr,
+       [](O, S v, A* a) { a->out = v; }},
+      {"--solver", "NAME", kPathCommands, Need::kOptional, false,
+       "the equation solver of implicit-fb, nonsmooth-fb and active-set (default newton)",
+       EquationSolverNames, [](O o, S v, A* a) { a->config.solver = Choice(o, v); }},
+      {"--eta", "1|2|3|4", kPathCommands, Need::kOptional, false,
+       "implicit-fb's eta case (METHOD.md section 2; default 1)", nullptr,
+       [](O o, S v, A* a) {
+         a->config.eta = ParseInteger(o, v);
+         if (a->config.eta < 1 || a->config.eta > 4) Refuse(o, "must be 1, 2, 3 or 4");
+       }},
+      {"--steps", "N", kPathCommands, Need::kOptional, false,
+       "accepted steps to take (default: the problem's)", nullptr,
+       [](O o, S v, A* a) {
+         a->steps = ParseInteger(o, v);
+         if (*a->steps <= 0) Refuse(o, "must be a positive integer");
+       }},
+      {"--arc-length", "THETA", kPathCommands, Need::kOptional, false,
+       "the arc length theta of (33) (default: the problem's)", nullptr,
+       [](O o, S v, A* a) { a->arc_length = PositiveNumber(o, v); }},
+      {"--start", "warm|cold|near", kRun, Need::kOptional, false,
+       "the start of each solve (default warm). near (fixed-load problems, e.g. P1): the solve "
+       "starts from the solution of implicit-fb (eta 1, Newton) perturbed by the relative "
+       "offset of --near-offset with a fixed pattern, as the report's section 5.1 starts eta "
+       "case 3 near the solution",
+       RunStarts,
+       [](O o, S v, A* a) {
+         a->start_near = Choice(o, v) == "near";
+         a->start = ParseStart(v);
+       }},
+      {"--near-offset", "DELTA", kRun, Need::kOptional, false,
+       "the relative offset of --start near (default 1e-2)", nullptr,
+       [](O o, S v, A* a) {
+         a->near_offset = ParseNumber(o, v);
+         if (!(a->near_offset >= 0.0)) Refuse(o, "must be >= 0");
+       }},
+      {"--starts", "warm,cold", kCompare, Need::kOptional, false,
+       "the starts each formulation is run with (default warm)", Starts,
+       [](O o, S v, A* a) {
+         for (const auto& s : SplitList(v)) a->starts.push_back(ParseStart(Choice(o, s)));
+       }},
+      {"--mode", "replay|free", kCompare, Need::kOptional, false,
+       "replay (default): every formulation solves the reference path's steps, each from the "
+       "reference's previous accepted state; free: each traces its own path",
+       Modes, [](O o, S v, A* a) { a->mode = Choice(o, v); }},
+      {"--reference", "NAME", kCompare, Need::kOptional, false,
+       "the formulation that traces the reference path of replay mode (default implicit-fb)",
+       FormulationNames, [](O o, S v, A* a) { a->reference = Choice(o, v); }},
+      {"--tol", "T", kPathCommands, Need::kOptional, false,
+       "the verdict's tolerance (METHOD.md section 7; default 1e-8)", nullptr,
+       [](O o, S v, A* a) { a->tolerance = PositiveNumber(o, v); }},
+      {"--linear-solver", "NAME", kPathCommands, Need::kOptional, false,
+       "the sparse linear solver of the equation solvers", LinearSolverNames,
+       [](O o, S v, A* a) { a->config.solver_options.linear_solver = Choice(o, v); }},
+      {"--max-cutbacks", "N", kRun, Need::kOptional, false,
+       "a step that fails is retried with theta halved at most N times (default 6)", nullptr,
+       [](O o, S v, A* a) { a->max_cutbacks = NonNegativeInteger(o, v); }},
+      {"--no-kinks", "", kRun, Need::kOptional, false,
+       "do not locate the kinks (METHOD.md section 6)", nullptr,
+       [](O, S, A* a) { a->locate_kinks = false; }},
+      {"--bifurcations", "off|detect|switch", kRun, Need::kOptional, false,
+       "detect (default): watch the sign of the bordered stiffness's determinant and record "
+       "limit and bifurcation points in critical.csv; switch also locates the first "
+       "bifurcation point and continues on the other branch",
+       BifurcationModes,
+       [](O o, S v, A* a) { ParseBifurcationMode(Choice(o, v), &a->bifurcations); }},
+      {"--save-every", "N", kRun, Need::kOptional, false,
+       "save the state every N accepted steps (default 0: only the critical points and the "
+       "final state) in snapshots.csv, snapshot_contacts.csv and vtk/",
+       nullptr, [](O o, S v, A* a) { a->save_every = NonNegativeInteger(o, v); }},
+      {"--time-limit", "SECONDS", kPathCommands, Need::kOptional, false,
+       "the time limit of each solve (default: none)", nullptr,
+       [](O o, S v, A* a) { a->time_limit = PositiveNumber(o, v); }},
+      {"--set", "KEY=VALUE", kProblemCommands, Need::kOptional, true,
+       "change a problem parameter (`contactbench list` shows each problem's); a problem "
+       "file's keys are length_scale, force_scale and load or arc_length, steps",
+       nullptr,
+       [](O o, S v, A* a) {
+         const auto [key, value] = KeyValue(o, v);
+         a->settings[key] = value;
+       }},
+      {"--option", "KEY=VALUE", kRun, Need::kOptional, true,
+       "a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); given as "
+       "FORMULATION:KEY=VALUE, only for the formulation named",
+       nullptr, [](O o, S v, A* a) { FormulationOption(o, v, false, a); }},
+      {"--option", "FORMULATION:KEY=VALUE", kCompare, Need::kOptional, true,
+       "a setting of the formulation named", nullptr,
+       [](O o, S v, A* a) { FormulationOption(o, v, true, a); }},
+      {"--help", "", kAll, Need::kOptional, false, "print this command's options and exit", nullptr,
+       [](O, S, A* a) { a->help = true; }},
+  };
+}
+
+bool Takes(const Option& option, Command command) { return (option.commands & command) != 0; }
+
+const Option* FindOption(const std::string& name, Command command) {
+  for (const Option& o : Options()) {
+    if (o.name == name && Takes(o, command)) return &o;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> OptionNames(Command command) {
+  std::vector<std::string> names;
+  for (const Option& o : Options()) {
+    if (Takes(o, command) && !Contains(names, o.name)) names.push_back(o.name);
+  }
+  return names;
+}
+
+std::string ValidList(const Option& o) {
+  return o.choices == nullptr ? "" : " (valid: " + Join(o.choices()) + ")";
+}
+
+// The problem is given by exactly one of its options; the required options are given.
+void CheckNeeds(Command command, const std::set<std::string>& given) {
+  std::vector<std::string> problem_given, problem_forms;
+  const Option* first_problem_option = nullptr;
+  for (const Option& o : Options()) {
+    if (!Takes(o, command) || o.need != Need::kProblem) continue;
+    if (first_problem_option == nullptr) first_problem_option = &o;
+    if (given.count(o.name)) problem_given.push_back(o.name);
+    problem_forms.push_back(NameAndValue(o));
+  }
+  if (problem_given.size() > 1) {
+    throw UsageError("give either " + Join(problem_given, " or ") + ", not both");
+  }
+  if (first_problem_option != nullptr && problem_given.empty()) {
+    throw UsageError(Join(problem_forms, " or ") + " is required" +
+                     ValidList(*first_problem_option));
+  }
+  for (const Option& o : Options()) {
+    if (Takes(o, command) && o.need == Need::kRequired && !given.count(o.name)) {
+      throw UsageError(NameAndValue(o) + " is required" + ValidList(o));
+    }
+  }
+}
+
+// --- the text ------------------------------------------------------------------------------
+
+constexpr std::size_t kWidth = 96;
+
+// `words` filled into lines of at most kWidth columns; the first line continues a text of
+// `used` columns, the others start with `indent` spaces. A word longer than a line stays whole.
+std::string Fill(const std::vector<std::string>& words, std::size_t used, std::size_t indent) {
+  std::string out;
+  std::size_t column = used;
+  bool line_start = true;
+  for (const auto& word : words) {
+    if (!line_start && column + 1 + word.size() > kWidth) {
+      out += '\n';
+      out.append(indent, ' ');
+      column = indent;
+      line_start = true;
+    }
+    if (!line_start) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    line_start = false;
+  }
+  return out;
+}
+
+std::vector<std::string> Words(const std::string& text) {
+  std::vector<std::string> words;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t space = text.find(' ', start);
+    const std::size_t end = space == std::string::npos ? text.size() : space;
+    if (end > start) words.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return words;
+}
+
+// The usage items of a command: the problem's options as one alternative, the required
+// options, then the optional ones in brackets.
+std::vector<std::string> UsageItems(Command command) {
+  std::vector<std::string> problem, required, optional;
+  for (const Option& o : Options()) {
+    if (!Takes(o, command)) continue;
+    const std::string item = NameAndValue(o) + (o.repeatable ? " ..." : "");
+    if (o.need == Need::kProblem) problem.push_back(item);
+    if (o.need == Need::kRequired) required.push_back(item);
+    if (o.need == Need::kOptional) optional.push_back("[" + item + "]");
+  }
+  std::vector<std::string> items;
+  if (problem.size() == 1) items.push_back(problem.front());
+  if (problem.size() > 1)
+    items.push_back(std::string("(").append(Join(problem, " | ")).append(")"));
+  items.insert(items.end(), required.begin(), required.end());
+  items.insert(items.end(), optional.begin(), optional.end());
+  return items;
+}
+
+// `prefix` contactbench COMMAND ITEMS..., continued lines aligned under the first item.
+std::string UsageLine(const CommandInfo& command, const std::string& prefix) {
+  const std::string head = prefix + "contactbench " + command.name;
+  return head + " " + Fill(UsageItems(command.command), head.size(), head.size() + 1) + "\n";
+}
+
+constexpr const char* kExitStatus =
+    "Exit status: 0 every step verified; 2 bad arguments (or a bad problem file, or an output "
+    "that cannot be written); 3 stopped on a failure (records kept); 4 interrupted by SIGINT or "
+    "SIGTERM (records kept).";
+
+void ApplyCompareDefaults(RunArguments* a) {
+  if (a->formulations.empty()) {
+    for (const auto& info : FormulationRegistry()) {
+      if (info.available) a->formulations.push_back(info.name);
+    }
+  }
+  if (a->starts.empty()) a->starts = {StartKind::kWarm};
+}
+
+}  // namespace
+
+std::string NameAndValue(const Option& o) {
+  return *o.placeholder == '\0' ? std::string(o.name) : std::string(o.name) + " " + o.placeholder;
+}
+
+std::string Join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : separator) + s;
+  return out;
+}
+
+const std::vector<CommandInfo>& Commands() {
+  static const std::vector<CommandInfo> commands = {
+      {kList, "list",
+       "Lists the problems with their parameters, the formulations and the solvers."},
+      {kRun, "run",
+       "Traces the problem's loading (the fixed-load solve, or the arc-length path) with one "
+       "formulation and writes DIR/steps.csv, iterations.csv, kinks.csv, critical.csv, "
+       "parameters.csv, solution.csv and contacts.csv (the final state), and the saved states "
+       "(every --save-every N-th step, each critical point, the final state) in snapshots.csv, "
+       "snapshot_contacts.csv, cells.csv and vtk/*.vtu, *.pvd. docs/records.md describes the "
+       "columns."},
+      {kCompare, "compare",
+       "Every formulation x start traces the SAME steps (replay mode: each step starts from the "
+       "reference path's previous accepted state; the reference is traced first by "
+       "--reference) or its own path (free mode), into one long-format steps.csv and "
+       "iterations.csv, the reference path's kinks.csv, and runs.csv (one row per formulation "
+       "x start). A formulation that cannot express the problem's step constraint or refuses "
+       "the problem is skipped, with the reason in runs.csv."},
+      {kExport, "export",
+       "Writes a named problem (or a problem file, normalised) as a problem file "
+       "(docs/problem-files.md)."},
+      {kSchema, "schema",
+       "Prints the columns of every record file as markdown (the tables of docs/records.md)."},
+  };
+  return commands;
+}
+
+const CommandInfo* FindCommand(const std::string& name) {
+  for (const CommandInfo& c : Commands()) {
+    if (name == c.name) return &c;
+  }
+  return nullptr;
+}
+
+const std::vector<Option>& Options() {
+  static const std::vector<Option> options = MakeOptions();
+  return options;
+}
+
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args) {
+  const char* command_name = "";
+  for (const CommandInfo& c : Commands()) {
+    if (c.command == command) command_name = c.name;
+  }
+  RunArguments a;
+  std::set<std::string> given;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& name = args[i];
+    const Option* o = FindOption(name, command);
+    if (o == nullptr) {
+      throw UsageError(std::string(command_name) + ": unknown option '" + name +
+                       "' (valid: " + Join(OptionNames(command)) + ")");
+    }
+    const bool repeated = !given.insert(name).second;
+    if (repeated && !o->repeatable) throw UsageError(name + " is given twice");
+    const bool flag = *o->placeholder == '\0';
+    if (!flag && i + 1 >= args.size()) throw UsageError(name + " needs a value");
+    o->parse(*o, flag ? std::string() : args[++i], &a);
+    if (a.help) return a;
+  }
+  CheckNeeds(command, given);
+  if (command == kCompare) ApplyCompareDefaults(&a);
+  return a;
+}
+
+std::string Synopsis(const CommandInfo& command) { return UsageLine(command, "usage: "); }
+
+std::string UsageText() {
+  std::string text = "usage:\n";
+  for (const CommandInfo& c : Commands()) text += UsageLine(c, "  ");
+  text += "  contactbench help\n\n";
+  text += Fill(Words("`contactbench COMMAND --help` says what a command does and what each of "
+                     "its options means."),
+               0, 0) +
+          "\n";
+  return text + Fill(Words(kExitStatus), 0, 0) + "\n";
+}
+
+std::string CommandHelp(const CommandInfo& command) {
+  std::string text = Synopsis(command) + "\n";
+  text += Fill(Words(std::string(command.summary)), 0, 0) + "\n\noptions:\n";
+  constexpr std::size_t kHelpColumn = 30;
+  for (const Option& o : Options()) {
+    if (!Takes(o, command.command)) continue;
+    std::string line = "  " + NameAndValue(o);
+    line += line.size() + 2 <= kHelpColumn ? std::string(kHelpColumn - line.size(), ' ')
+                                           : "\n" + std::string(kHelpColumn, ' ');
+    std::string help = o.help;
+    if (o.choices != nullptr) help += "; one of: " + Join(o.choices());
+    text += line + Fill(Words(help), kHelpColumn, kHelpColumn) + "\n";
+  }
+  // The exit statuses are those of the commands that load a problem.
+  if ((command.command & (kRun | kCompare | kExport)) == 0) return text;
+  return text + "\n" + Fill(Words(kExitStatus), 0, 0) + "\n";
+}
+
+}  // namespace cb::harness

@@ -1,0 +1,110 @@
+// The command line of `contactbench`: one table of options drives the parser of every
+// subcommand and produces the usage text and each subcommand's --help, so that what is parsed
+// and what is documented cannot drift apart.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "formulations/config.h"
+#include "path/path.h"
+
+namespace cb::harness {
+
+// A usage error: reported with exit status 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The subcommands, as bits of a set.
+enum Command : unsigned {
+  kList = 1u << 0,
+  kRun = 1u << 1,
+  kCompare = 1u << 2,
+  kExport = 1u << 3,
+  kSchema = 1u << 4,
+};
+
+struct CommandInfo {
+  Command command;
+  const char* name;
+  const char* summary;  // what it does (plain text, wrapped when printed)
+};
+// In the order of the usage text.
+const std::vector<CommandInfo>& Commands();
+// nullptr for an unknown name.
+const CommandInfo* FindCommand(const std::string& name);
+
+// What the options of a command set.
+struct RunArguments {
+  bool help = false;
+  std::string problem;
+  std::string problem_file;
+  std::string formulation;                // run
+  std::vector<std::string> formulations;  // compare
+  std::vector<StartKind> starts;          // compare
+  std::string mode = "replay";            // compare
+  std::string reference = "implicit-fb";  // compare
+  std::string out;
+  FormulationConfig config;
+  // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
+  std::map<std::string, std::map<std::string, std::string>> options;
+  std::optional<int> steps;
+  std::optional<double> arc_length;
+  StartKind start = StartKind::kWarm;
+  bool start_near = false;  // run --start near: a warm start near a reference solution
+  double near_offset = 1e-2;
+  double tolerance = 1e-8;
+  int max_cutbacks = 6;
+  bool locate_kinks = true;
+  BifurcationMode bifurcations = BifurcationMode::kDetect;
+  int save_every = 0;
+  double time_limit = 0.0;
+  std::map<std::string, std::string> settings;
+};
+
+// Whether a command needs an option.
+enum class Need {
+  kOptional,
+  kRequired,
+  kProblem,  // exactly one of the options marked so (--problem, --problem-file)
+};
+
+struct Option {
+  const char* name;         // "--steps"
+  const char* placeholder;  // "N"; "" for a flag, which takes no value
+  unsigned commands;        // the Commands that take it
+  Need need;
+  bool repeatable;  // may be given more than once (--set); otherwise refused when repeated
+  const char* help;
+  // The valid values, listed in the help and in errors (nullptr: any).
+  std::vector<std::string> (*choices)();
+  // Parses and checks `value` ("" for a flag) into the arguments; throws UsageError naming
+  // the option.
+  void (*parse)(const Option& option, const std::string& value, RunArguments* arguments);
+};
+// In the order of the usage text. An option name may have two entries for disjoint commands
+// (export's --out is a file, run's a directory).
+const std::vector<Option>& Options();
+
+// "--steps N", or the name alone for a flag.
+std::string NameAndValue(const Option& option);
+
+// The arguments of `command` (the command line after its name), checked: unknown, repeated or
+// missing options and bad values throw UsageError. With --help, returns at once with `help`.
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args);
+
+// "a, b, c".
+std::string Join(const std::vector<std::string>& items, const std::string& separator = ", ");
+
+// The usage of every command, with the exit statuses (`contactbench help`).
+std::string UsageText();
+// A command's usage line(s).
+std::string Synopsis(const CommandInfo& command);
+// `contactbench COMMAND --help`: the usage, what it does, and each of its options.
+std::string CommandHelp(const CommandInfo& command);
+
+}  // namespace cb::harness
