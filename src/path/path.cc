@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "path/stability.h"
+#include "path/step_solve.h"
 
 namespace cb {
 
@@ -39,13 +41,6 @@ State ZeroState(const ContactModel& model) {
 }
 
 namespace {
-
-// g = -phi(u).
-Vec GapsAt(const ContactModel& model, const Vec& u) {
-  Vec phi;
-  model.Gaps(u, &phi);
-  return -phi;
-}
 
 double HInner(const Vec& a, double la, const Vec& b, double lb, double w) {
   return a.dot(b) + w * w * la * lb;
@@ -121,14 +116,15 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
     start.du = t * du_step;
     start.dlambda = t * dl_step;
     start.r = a.r + t * (b.r - a.r);
+    JudgedStep kink = SolveAndJudge(formulation, kink_step, start, options);
     KinkRecord record;
     record.step = step;
     record.pair = p;
-    record.result = formulation.Solve(kink_step, start, options.controls);
-    record.verdict = Judge(kink_step, record.result.point, options.tolerance);
+    record.result = std::move(kink.result);
+    record.verdict = kink.verdict;
+    record.state = std::move(kink.state);
     const Vec& du = record.result.point.du;
     const double dl = record.result.point.dlambda;
-    record.state = {a.u + du, record.result.point.r, a.lambda + dl};
     // On the path between the two states: within two chords of each. (A step may cut across a
     // corner of the path, so the kink need not lie inside the chord's ball.)
     const Vec to_b = b.u - record.state.u;
@@ -184,24 +180,22 @@ void LocateModeChange(const ContactModel& model, const ContactScales& scales, co
     start.du = chord_u * (t / chord);
     start.dlambda = chord_l * (t / chord);
     start.r = a.r + (t / chord) * (b.r - a.r);
-    const StepResult result = formulation.Solve(problem, start, options.controls);
+    const JudgedStep trial = SolveAndJudge(formulation, problem, start, options);
     ++point->bisections;
-    const Verdict verdict = Judge(problem, result.point, options.tolerance);
-    if (!verdict.verified) {
-      point->message = "a bisection step failed the verdict (" + result.message + ")";
+    if (!trial.verdict.verified) {
+      point->message = "a bisection step failed the verdict (" + trial.result.message + ")";
       *t_change = hi;
       return;
     }
-    const State trial{a.u + result.point.du, result.point.r, a.lambda + result.point.dlambda};
-    const int modes = UnstableModes(model, scales, trial);
+    const int modes = UnstableModes(model, scales, trial.state);
     if (modes == modes_a) {
       lo = t;
-      point->state = trial;
-      point->verdict = verdict;
+      point->state = trial.state;
+      point->verdict = trial.verdict;
     } else {
       hi = t;
       *modes_after = modes;
-      *past = trial;
+      *past = trial.state;
     }
   }
   *t_change = hi;
@@ -359,10 +353,13 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       attempt.branch_switch = switching;
       attempt.predicted_du = start.du;
       attempt.predicted_dlambda = start.dlambda;
-      attempt.result = formulation.Solve(problem, start, options.controls);
+      JudgedStep judged = SolveAndJudge(formulation, problem, start, options);
       ++summary.attempts;
+      attempt.result = std::move(judged.result);
+      attempt.verdict = judged.verdict;
+      attempt.state = std::move(judged.state);
+      attempt.n_contact = judged.n_contact;
       const StepPoint& point = attempt.result.point;
-      attempt.verdict = Judge(problem, point, options.tolerance);
       if (switching) {
         // It must leave along the null vector, not return to the branch already traced.
         attempt.reversed = std::abs(pending_switch->mode.dot(point.du)) < 0.5 * theta;
@@ -370,8 +367,6 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         attempt.reversed = TurnsBack(point, previous_du, previous_dlambda, step > 1, theta, w);
       }
       attempt.accepted = attempt.verdict.verified && !attempt.reversed;
-      attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
-      attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), point.r);
       if (attempt.result.status == Status::kStoppedByCaller) {
         // An interrupted solve is not an accepted step, even when the point it stopped at
         // happens to pass the verdict: the path stops before the step (the records and the
@@ -394,9 +389,10 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
       // along that branch from the state accepted past the bifurcation point.
       CriticalPointRecord failed = *pending_switch;
       failed.switched = false;
-      failed.message = "the branch switch failed: every attempt along the null vector " +
-                       std::string("returned to the branch already traced or failed the verdict; ") +
-                       "the path goes on along it";
+      failed.message =
+          "the branch switch failed: every attempt along the null vector " +
+          std::string("returned to the branch already traced or failed the verdict; ") +
+          "the path goes on along it";
       if (observer != nullptr) observer->OnCriticalPoint(failed);
       pending_switch.reset();
       if (watch_stability) stability = UnstableModes(model, scales, state);
@@ -547,8 +543,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
 
 PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scales,
                            const State& initial, double lambda, Formulation& formulation,
-                           const PathOptions& options, PathObserver* observer,
-                           const State* guess) {
+                           const PathOptions& options, PathObserver* observer, const State* guess) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
   StepProblem problem{&model, initial, StepConstraint::FixedLoad(lambda), scales};
@@ -562,12 +557,12 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   attempt.kind = ConstraintKind::kFixedLoad;
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
-  attempt.result = formulation.Solve(problem, start, options.controls);
-  attempt.verdict = Judge(problem, attempt.result.point, options.tolerance);
+  JudgedStep judged = SolveAndJudge(formulation, problem, start, options);
+  attempt.result = std::move(judged.result);
+  attempt.verdict = judged.verdict;
   attempt.accepted = attempt.verdict.verified;
-  attempt.state = {initial.u + attempt.result.point.du, attempt.result.point.r,
-                   initial.lambda + attempt.result.point.dlambda};
-  attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), attempt.state.r);
+  attempt.state = std::move(judged.state);
+  attempt.n_contact = judged.n_contact;
   if (observer != nullptr) observer->OnAttempt(attempt);
 
   PathSummary summary;

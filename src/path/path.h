@@ -35,7 +35,7 @@ struct PathOptions {
   // kSwitch: the bifurcation point is bracketed by bisection of the arc length until the
   // bracket is below this fraction of theta.
   double bifurcation_tolerance = 1e-6;
-  SolveControls controls;    // per-step time limit and interrupt hook
+  SolveControls controls;  // per-step time limit and interrupt hook
 
   bool IsValid(std::string* why) const;
 };
@@ -93,7 +93,7 @@ struct CriticalPointRecord {
   bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance
   int bisections = 0;
   Verdict verdict;
-  Vec mode;                    // kBifurcation: the null vector (unit norm)
+  Vec mode;               // kBifurcation: the null vector (unit norm)
   bool switched = false;  // the path left this point onto the other branch
   std::string message;
 };

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "path/step_solve.h"
 
 namespace cb {
 
@@ -47,20 +50,19 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
     attempt.step = k;
     attempt.kind = kind;
     attempt.arc_length = kind == ConstraintKind::kArcLength ? constraint.arc_length : 0.0;
-    attempt.result = formulation.Solve(problem, start, options.controls);
+    JudgedStep judged = SolveAndJudge(formulation, problem, start, options);
     ++summary.attempts;
+    attempt.result = std::move(judged.result);
+    attempt.verdict = judged.verdict;
+    attempt.state = std::move(judged.state);
+    attempt.n_contact = judged.n_contact;
     const StepPoint& point = attempt.result.point;
-    attempt.verdict = Judge(problem, point, options.tolerance);
     // The reference direction decides "forward": the answer must not point against the
     // reference step (the other root of (33)).
     const StepPoint& ref = reference.increments[k - 1];
     attempt.reversed = kind == ConstraintKind::kArcLength &&
                        point.du.dot(ref.du) + w * w * point.dlambda * ref.dlambda <= 0.0;
     attempt.accepted = attempt.verdict.verified && !attempt.reversed;
-    attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
-    Vec phi;
-    model.Gaps(attempt.state.u, &phi);
-    attempt.n_contact = CountContacts(problem, -phi, point.r);
     if (observer != nullptr) observer->OnAttempt(attempt);
     if (attempt.accepted) {
       ++summary.accepted_steps;

@@ -63,6 +63,9 @@ class BorderedStiffness {
   std::string message_;
 };
 
+// The gaps g = -phi(u) of the model at u.
+Vec GapsAt(const ContactModel& model, const Vec& u);
+
 // Contact status of each pair at (g, r): closed when min(g/L, -r/R) picks the gap.
 std::vector<bool> ClosedPairs(const ContactScales& scales, const Vec& g, const Vec& r);
 

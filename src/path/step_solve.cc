@@ -1,0 +1,19 @@
+#include "path/step_solve.h"
+
+#include "path/stability.h"
+
+namespace cb {
+
+JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
+                         const StartPoint& start, const PathOptions& options) {
+  JudgedStep judged;
+  judged.result = formulation.Solve(problem, start, options.controls);
+  const StepPoint& point = judged.result.point;
+  judged.verdict = Judge(problem, point, options.tolerance);
+  const State& base = problem.base;
+  judged.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
+  judged.n_contact = CountContacts(problem, GapsAt(*problem.model, judged.state.u), point.r);
+  return judged;
+}
+
+}  // namespace cb
