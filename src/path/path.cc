@@ -7,8 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "path/arc_length_norm.h"
 #include "path/stability.h"
 #include "path/step_solve.h"
+#include "path/turn_back.h"
 
 namespace cb {
 
@@ -40,38 +42,6 @@ State ZeroState(const ContactModel& model) {
   return {Vec::Zero(model.num_dofs()), Vec::Zero(model.num_pairs()), 0.0};
 }
 
-namespace {
-
-double HInner(const Vec& a, double la, const Vec& b, double lb, double w) {
-  return a.dot(b) + w * w * la * lb;
-}
-
-// H-distance from the point x_k + (du, dl) to the segment from x_{k-1} = x_k - (pu, pl) to x_k.
-double DistanceToPreviousSegment(const Vec& du, double dl, const Vec& pu, double pl, double w) {
-  const double pp = HInner(pu, pl, pu, pl, w);
-  // Parameter s of the closest point x_k - s (pu, pl), s in [0, 1].
-  const double s = pp > 0.0 ? std::clamp(-HInner(du, dl, pu, pl, w) / pp, 0.0, 1.0) : 0.0;
-  const Vec eu = du + s * pu;
-  const double el = dl + s * pl;
-  return std::sqrt(HInner(eu, el, eu, el, w));
-}
-
-// The guard against turning back (issue: "the path does not turn back on itself"). The other
-// root of (33) lies on the segment just traced (exactly at x_{k-1} when theta is unchanged),
-// so an answer is rejected when it points backwards AND lies within 5% of theta of that
-// segment. The inner product alone is not enough: at a kink the path may turn by more than
-// 90 degrees, and the correct root then also points backwards, but away from the segment.
-// On the first step there is no segment; the answer must not point against the tangent.
-bool TurnsBack(const StepPoint& point, const Vec& previous_du, double previous_dlambda,
-               bool have_segment, double theta, double w) {
-  if (HInner(point.du, point.dlambda, previous_du, previous_dlambda, w) > 0.0) return false;
-  if (!have_segment) return true;
-  return DistanceToPreviousSegment(point.du, point.dlambda, previous_du, previous_dlambda, w) <=
-         0.05 * theta;
-}
-
-}  // namespace
-
 bool TangentPredictor(const ContactModel& model, const ContactScales& scales, const State& state,
                       double theta, double lambda_weight, Vec* du, double* dlambda,
                       std::string* why) {
@@ -101,7 +71,7 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
   const Vec du_step = b.u - a.u;
   const double dl_step = b.lambda - a.lambda;
   const double w = options.lambda_weight;
-  const double chord = std::sqrt(HInner(du_step, dl_step, du_step, dl_step, w));
+  const double chord = HNorm(du_step, dl_step, w);
   std::optional<State> nearest;
   double nearest_distance = std::numeric_limits<double>::infinity();
   for (int p = 0; p < model.num_pairs(); ++p) {
@@ -129,8 +99,8 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
     // corner of the path, so the kink need not lie inside the chord's ball.)
     const Vec to_b = b.u - record.state.u;
     const double dl_to_b = b.lambda - record.state.lambda;
-    const double from_a = std::sqrt(HInner(du, dl, du, dl, w));
-    const double to_b_norm = std::sqrt(HInner(to_b, dl_to_b, to_b, dl_to_b, w));
+    const double from_a = HNorm(du, dl, w);
+    const double to_b_norm = HNorm(to_b, dl_to_b, w);
     record.between = from_a <= 2.0 * chord && to_b_norm <= 2.0 * chord;
     if (record.verdict.verified && record.between) {
       ++*found;
@@ -147,8 +117,6 @@ std::optional<State> LocateKinks(const ContactModel& model, const ContactScales&
 }  // namespace
 
 namespace {
-
-double HNorm(const Vec& du, double dl, double w) { return std::sqrt(HInner(du, dl, du, dl, w)); }
 
 int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
   return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
@@ -301,9 +269,8 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
 
   // The reference direction: the tangent predictor for the first step, then the previous
   // accepted increment.
-  Vec previous_du;
-  double previous_dlambda = 0.0;
-  if (!TangentPredictor(model, scales, state, nominal, w, &previous_du, &previous_dlambda, &why)) {
+  Increment heading;
+  if (!TangentPredictor(model, scales, state, nominal, w, &heading.du, &heading.dlambda, &why)) {
     summary.status = Status::kFailed;
     summary.message = why;
     return summary;
@@ -337,9 +304,9 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         start.dlambda = 0.0;
       } else {
         // (38), (41): the previous increment, rescaled to this step's theta.
-        const double scale = theta / HNorm(previous_du, previous_dlambda, w);
-        start.du = previous_du * scale;
-        start.dlambda = previous_dlambda * scale;
+        const double scale = theta / HNorm(heading.du, heading.dlambda, w);
+        start.du = heading.du * scale;
+        start.dlambda = heading.dlambda * scale;
       }
       start.r = base.r;  // (40)
       start.warm_state = previous_warm_state;
@@ -364,7 +331,7 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         // It must leave along the null vector, not return to the branch already traced.
         attempt.reversed = std::abs(pending_switch->mode.dot(point.du)) < 0.5 * theta;
       } else {
-        attempt.reversed = TurnsBack(point, previous_du, previous_dlambda, step > 1, theta, w);
+        attempt.reversed = TurnsBack(point, heading, step > 1, theta, w);
       }
       attempt.accepted = attempt.verdict.verified && !attempt.reversed;
       if (attempt.result.status == Status::kStoppedByCaller) {
@@ -417,8 +384,8 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     // The direction to continue in: the increment just taken, or, past a kink, the increment
     // from the kink (the path's direction on the branch it has turned onto). Without this a
     // step that cut across a corner would be continued back along the new branch.
-    previous_du = attempt.result.point.du;
-    previous_dlambda = attempt.result.point.dlambda;
+    heading.du = attempt.result.point.du;
+    heading.dlambda = attempt.result.point.dlambda;
     if (options.locate_kinks) {
       const std::optional<State> kink = LocateKinks(model, scales, base, attempt.state, step,
                                                     formulation, options, observer, &attempt.kinks);
@@ -427,8 +394,8 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
         const Vec du_after = attempt.state.u - kink->u;
         const double dl_after = attempt.state.lambda - kink->lambda;
         if (HNorm(du_after, dl_after, w) > 1e-3 * theta) {
-          previous_du = du_after;
-          previous_dlambda = dl_after;
+          heading.du = du_after;
+          heading.dlambda = dl_after;
         }
       }
     }
