@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "path/arc_length_norm.h"
+#include "path/kink_location.h"
 #include "path/stability.h"
 #include "path/step_solve.h"
 #include "path/turn_back.h"
@@ -56,65 +57,6 @@ bool TangentPredictor(const ContactModel& model, const ContactScales& scales, co
   *dlambda = theta / norm;
   return true;
 }
-
-namespace {
-
-// Locates the kink of every pair whose status changed between accepted states a and b
-// (METHOD.md section 6), reporting each. Returns the verified kink nearest to b, if any.
-std::optional<State> LocateKinks(const ContactModel& model, const ContactScales& scales,
-                                 const State& a, const State& b, int step, Formulation& formulation,
-                                 const PathOptions& options, PathObserver* observer, int* found) {
-  const Vec ga = GapsAt(model, a.u);
-  const Vec gb = GapsAt(model, b.u);
-  const std::vector<bool> ca = ClosedPairs(scales, ga, a.r);
-  const std::vector<bool> cb = ClosedPairs(scales, gb, b.r);
-  const Vec du_step = b.u - a.u;
-  const double dl_step = b.lambda - a.lambda;
-  const double w = options.lambda_weight;
-  const double chord = HNorm(du_step, dl_step, w);
-  std::optional<State> nearest;
-  double nearest_distance = std::numeric_limits<double>::infinity();
-  for (int p = 0; p < model.num_pairs(); ++p) {
-    if (ca[p] == cb[p]) continue;
-    // Switching function s = g/L + r/R changes sign at the kink; interpolate it linearly.
-    const double sa = ga[p] / scales.length + a.r[p] / scales.force;
-    const double sb = gb[p] / scales.length + b.r[p] / scales.force;
-    const double t = std::clamp(sa / (sa - sb), 0.0, 1.0);
-    StepProblem kink_step{&model, a, StepConstraint::Kink(p), scales};
-    StartPoint start;
-    start.kind = StartKind::kWarm;
-    start.du = t * du_step;
-    start.dlambda = t * dl_step;
-    start.r = a.r + t * (b.r - a.r);
-    JudgedStep kink = SolveAndJudge(formulation, kink_step, start, options);
-    KinkRecord record;
-    record.step = step;
-    record.pair = p;
-    record.result = std::move(kink.result);
-    record.verdict = kink.verdict;
-    record.state = std::move(kink.state);
-    const Vec& du = record.result.point.du;
-    const double dl = record.result.point.dlambda;
-    // On the path between the two states: within two chords of each. (A step may cut across a
-    // corner of the path, so the kink need not lie inside the chord's ball.)
-    const Vec to_b = b.u - record.state.u;
-    const double dl_to_b = b.lambda - record.state.lambda;
-    const double from_a = HNorm(du, dl, w);
-    const double to_b_norm = HNorm(to_b, dl_to_b, w);
-    record.between = from_a <= 2.0 * chord && to_b_norm <= 2.0 * chord;
-    if (record.verdict.verified && record.between) {
-      ++*found;
-      if (to_b_norm < nearest_distance) {
-        nearest_distance = to_b_norm;
-        nearest = record.state;
-      }
-    }
-    if (observer != nullptr) observer->OnKink(record);
-  }
-  return nearest;
-}
-
-}  // namespace
 
 namespace {
 
@@ -387,10 +329,13 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     heading.du = attempt.result.point.du;
     heading.dlambda = attempt.result.point.dlambda;
     if (options.locate_kinks) {
-      const std::optional<State> kink = LocateKinks(model, scales, base, attempt.state, step,
-                                                    formulation, options, observer, &attempt.kinks);
+      PathObserver no_observer;
+      const KinksOfStep kinks =
+          KinkLocator(model, scales, formulation, options)
+              .Locate(step, base, attempt.state, observer != nullptr ? *observer : no_observer);
+      attempt.kinks = kinks.found;
       summary.kinks += attempt.kinks;
-      if (kink) {
+      if (const std::optional<State>& kink = kinks.nearest) {
         const Vec du_after = attempt.state.u - kink->u;
         const double dl_after = attempt.state.lambda - kink->lambda;
         if (HNorm(du_after, dl_after, w) > 1e-3 * theta) {
