@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "path/arc_length_norm.h"
+#include "path/critical_points.h"
 #include "path/kink_location.h"
 #include "path/stability.h"
 #include "path/step_solve.h"
@@ -57,110 +58,6 @@ bool TangentPredictor(const ContactModel& model, const ContactScales& scales, co
   *dlambda = theta / norm;
   return true;
 }
-
-namespace {
-
-int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
-  return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
-}
-
-// Brackets, by bisection of the arc length from accepted state a towards b, the first point
-// where the number of unstable modes changes from `modes_a`; each trial is an arc-length step
-// from a, predicted along the chord b - a and judged by the verdict. Searches t in
-// (t_from, chord] and leaves in `point` the verified trial nearest the change on a's side
-// (`point->state`, whose null vector is taken), and in *t_change and *past the first verified
-// point past it.
-void LocateModeChange(const ContactModel& model, const ContactScales& scales, const State& a,
-                      int modes_a, const State& b, double t_from, Formulation& formulation,
-                      const PathOptions& options, CriticalPointRecord* point, double* t_change,
-                      int* modes_after, State* past) {
-  const double w = options.lambda_weight;
-  const Vec chord_u = b.u - a.u;
-  const double chord_l = b.lambda - a.lambda;
-  const double chord = HNorm(chord_u, chord_l, w);
-  double lo = t_from;
-  double hi = chord;
-  *modes_after = UnstableModes(model, scales, b);
-  *past = b;
-  while (hi - lo > options.bifurcation_tolerance * chord && point->bisections < 60) {
-    const double t = 0.5 * (lo + hi);
-    StepProblem problem{&model, a, StepConstraint::ArcLength(t, w), scales};
-    StartPoint start;
-    start.kind = StartKind::kWarm;
-    start.du = chord_u * (t / chord);
-    start.dlambda = chord_l * (t / chord);
-    start.r = a.r + (t / chord) * (b.r - a.r);
-    const JudgedStep trial = SolveAndJudge(formulation, problem, start, options);
-    ++point->bisections;
-    if (!trial.verdict.verified) {
-      point->message = "a bisection step failed the verdict (" + trial.result.message + ")";
-      *t_change = hi;
-      return;
-    }
-    const int modes = UnstableModes(model, scales, trial.state);
-    if (modes == modes_a) {
-      lo = t;
-      point->state = trial.state;
-      point->verdict = trial.verdict;
-    } else {
-      hi = t;
-      *modes_after = modes;
-      *past = trial.state;
-    }
-  }
-  *t_change = hi;
-  point->located = true;
-}
-
-// The orientation of the path at a state, moving along (du, dlambda): the sign of the
-// determinant of the step's Jacobian bordered by the arc-length row,
-//   det [A  -f; du^T  w^2 dlambda] = det A (w^2 dlambda + du^T K^-1 f)   (K^-1: on Z),
-// with sign det A = (-1)^(unstable modes). At a limit point both factors change sign; at a
-// simple bifurcation point only det A does. So a change of the count with no change of the
-// orientation is the limit point, and a change of the orientation is a bifurcation point (the
-// classical test; it holds when the two are a hair apart, as they are on P2).
-int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
-                const Vec& du, double dlambda, double w) {
-  const BorderedStiffness stiffness(model, scales, at);
-  Vec tangent;
-  if (stiffness.unstable_modes() < 0 ||
-      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
-    return 0;
-  }
-  const double schur = w * w * dlambda + du.dot(tangent);
-  const int det_sign = stiffness.unstable_modes() % 2 == 0 ? 1 : -1;
-  return schur > 0.0 ? det_sign : (schur < 0.0 ? -det_sign : 0);
-}
-
-// The direction to leave a bifurcation point along: the null vector there, made orthogonal to
-// the tangent K^-1 f (a limit mode close by, as on P2, dominates the tangent) and signed so
-// that its largest component is positive (reproducible).
-bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
-                     Vec* mode, std::string* why) {
-  const BorderedStiffness stiffness(model, scales, at);
-  Mat basis;
-  Vec tangent;
-  if (!stiffness.NullSpace(1, 4, &basis) ||
-      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
-    *why = "no null vector at the bifurcation point: " + stiffness.message();
-    return false;
-  }
-  *mode = basis.col(0);
-  const double tt = tangent.squaredNorm();
-  if (tt > 0.0) *mode -= (mode->dot(tangent) / tt) * tangent;
-  const double norm = mode->norm();
-  if (!(norm > 0.0)) {
-    *why = "the null vector at the bifurcation point is the path's own tangent";
-    return false;
-  }
-  *mode /= norm;
-  Eigen::Index largest = 0;
-  mode->cwiseAbs().maxCoeff(&largest);
-  if ((*mode)[largest] < 0.0) *mode = -*mode;
-  return true;
-}
-
-}  // namespace
 
 const char* ToString(BifurcationMode mode) {
   switch (mode) {
@@ -348,79 +245,15 @@ PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& s
     std::vector<CriticalPointRecord> critical;
     if (watch_stability) {
       attempt.stability = UnstableModes(model, scales, attempt.state);
-      const double dlambda = attempt.result.point.dlambda;
-      if (!switching && step > 1 && dlambda * last_dlambda < 0.0) {
-        CriticalPointRecord limit;
-        limit.step = step;
-        limit.kind = CriticalPointRecord::Kind::kLimit;
-        limit.nonsmooth = attempt.kinks + last_kinks > 0;
-        limit.state = base;
-        limit.verdict.verified = true;  // an accepted state
-        limit.message = "the load parameter turned at the accepted state before this step";
-        critical.push_back(limit);
-        ++summary.limit_points;
-      }
-      if (!switching && stability >= 0 && attempt.stability >= 0 &&
-          attempt.stability != stability) {
-        const std::vector<bool> before = ClosedPairs(scales, GapsAt(model, base.u), base.r);
-        const std::vector<bool> after =
-            ClosedPairs(scales, GapsAt(model, attempt.state.u), attempt.state.r);
-        if (before != after || attempt.kinks > 0) {
-          CriticalPointRecord point;
-          point.step = step;
-          point.kind = CriticalPointRecord::Kind::kStabilityChange;
-          point.nonsmooth = true;
-          point.state = base;
-          point.verdict.verified = true;
-          point.message = "the number of unstable modes changed with the contact status";
-          critical.push_back(point);
-        } else {
-          // Each change of the count along the step is located; where the orientation changes
-          // across it, it is a bifurcation point (else the limit point, recorded above).
-          const Vec& chord_u = attempt.result.point.du;
-          const double chord_l = attempt.result.point.dlambda;
-          double t_from = 0.0;
-          int modes = stability;
-          State from = base;
-          for (int guard = 0; guard < 8 && modes != attempt.stability; ++guard) {
-            CriticalPointRecord point;
-            point.step = step;
-            point.kind = CriticalPointRecord::Kind::kBifurcation;
-            point.state = from;
-            point.verdict.verified = true;
-            double t_change = 0.0;
-            int modes_after = attempt.stability;
-            State past;
-            LocateModeChange(model, scales, base, modes, attempt.state, t_from, formulation,
-                             options, &point, &t_change, &modes_after, &past);
-            if (!point.located) {
-              point.kind = CriticalPointRecord::Kind::kStabilityChange;
-              critical.push_back(point);
-              break;
-            }
-            const int before = Orientation(model, scales, point.state, chord_u, chord_l, w);
-            const int after = Orientation(model, scales, past, chord_u, chord_l, w);
-            t_from = t_change;
-            modes = modes_after;
-            from = past;
-            if (before == after) continue;  // the limit point
-            ++summary.bifurcations;
-            if (!BranchDirection(model, scales, point.state, &point.mode, &why)) {
-              point.message = "located; " + why;
-              critical.push_back(point);
-              continue;
-            }
-            point.message = "located";
-            if (options.bifurcations == BifurcationMode::kSwitch &&
-                summary.branch_switches < options.max_branch_switches && !pending_switch &&
-                std::none_of(critical.begin(), critical.end(),
-                             [](const CriticalPointRecord& c) { return c.switched; })) {
-              point.switched = true;  // the next step leaves along point.mode
-              point.message += "; the next step leaves along the null vector";
-            }
-            critical.push_back(point);
-          }
-        }
+      StepOrigin origin{base, switching ? -1 : stability, std::nullopt};
+      if (!switching && step > 1) origin.previous = {last_dlambda, last_kinks};
+      const bool may_switch = options.bifurcations == BifurcationMode::kSwitch &&
+                              summary.branch_switches < options.max_branch_switches;
+      critical = CriticalPointFinder(model, scales, formulation, options)
+                     .Find(origin, attempt, may_switch);
+      for (const CriticalPointRecord& point : critical) {
+        if (point.kind == CriticalPointRecord::Kind::kLimit) ++summary.limit_points;
+        if (point.kind == CriticalPointRecord::Kind::kBifurcation) ++summary.bifurcations;
       }
     }
     if (observer != nullptr) observer->OnAttempt(attempt);

@@ -6,6 +6,10 @@
 
 namespace cb {
 
+int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
+  return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
+}
+
 Vec GapsAt(const ContactModel& model, const Vec& u) {
   Vec phi;
   model.Gaps(u, &phi);
