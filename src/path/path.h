@@ -38,6 +38,8 @@ struct PathOptions {
   SolveControls controls;  // per-step time limit and interrupt hook
 
   bool IsValid(std::string* why) const;
+  // Throws std::invalid_argument("path options: " + why) when not valid.
+  void Validate() const;
 };
 
 // One solve of one step.

@@ -23,8 +23,7 @@ void PathRecorder::OnAttempt(const StepAttempt& attempt) {
 PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, const State& initial,
                        const PathRecorder& reference, Formulation& formulation,
                        const PathOptions& options, PathObserver* observer) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
+  options.Validate();
   PathSummary summary;
   summary.final_state = initial;
   const int steps = static_cast<int>(reference.states.size());
