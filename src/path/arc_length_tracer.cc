@@ -124,12 +124,8 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   attempt.branch_switch = leg.switches_branch();
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
-  JudgedStep judged = SolveAndJudge(formulation_, problem, start, options_);
+  RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
   ++summary_.attempts;
-  attempt.result = std::move(judged.result);
-  attempt.verdict = judged.verdict;
-  attempt.state = std::move(judged.state);
-  attempt.n_contact = judged.n_contact;
   attempt.reversed = leg.Reversed(attempt.result.point, theta);
   attempt.accepted = attempt.verdict.verified && !attempt.reversed;
   return attempt;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <utility>
 
 #include "path/arc_length_tracer.h"
 #include "path/stability.h"
@@ -114,12 +113,8 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   attempt.kind = ConstraintKind::kFixedLoad;
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
-  JudgedStep judged = SolveAndJudge(formulation, problem, start, options);
-  attempt.result = std::move(judged.result);
-  attempt.verdict = judged.verdict;
+  RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
   attempt.accepted = attempt.verdict.verified;
-  attempt.state = std::move(judged.state);
-  attempt.n_contact = judged.n_contact;
   if (observer != nullptr) observer->OnAttempt(attempt);
 
   PathSummary summary;

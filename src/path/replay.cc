@@ -2,7 +2,6 @@
 
 #include <any>
 #include <string>
-#include <utility>
 
 #include "path/arc_length_norm.h"
 #include "path/step_solve.h"
@@ -39,12 +38,8 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
     attempt.step = k;
     attempt.kind = kind;
     attempt.arc_length = kind == ConstraintKind::kArcLength ? constraint.arc_length : 0.0;
-    JudgedStep judged = SolveAndJudge(formulation, problem, start, options);
+    RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
     ++summary.attempts;
-    attempt.result = std::move(judged.result);
-    attempt.verdict = judged.verdict;
-    attempt.state = std::move(judged.state);
-    attempt.n_contact = judged.n_contact;
     const StepPoint& point = attempt.result.point;
     // The reference direction decides "forward": the answer must not point against the
     // reference step (the other root of (33)).

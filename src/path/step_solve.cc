@@ -1,5 +1,7 @@
 #include "path/step_solve.h"
 
+#include <utility>
+
 #include "path/stability.h"
 
 namespace cb {
@@ -14,6 +16,13 @@ JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
   judged.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
   judged.n_contact = CountContacts(problem, GapsAt(*problem.model, judged.state.u), point.r);
   return judged;
+}
+
+void RecordJudgedStep(JudgedStep judged, StepAttempt* attempt) {
+  attempt->result = std::move(judged.result);
+  attempt->verdict = judged.verdict;
+  attempt->state = std::move(judged.state);
+  attempt->n_contact = judged.n_contact;
 }
 
 }  // namespace cb

@@ -19,4 +19,7 @@ struct JudgedStep {
 JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
                          const StartPoint& start, const PathOptions& options);
 
+// Moves `judged` into the attempt's result, verdict, state and n_contact.
+void RecordJudgedStep(JudgedStep judged, StepAttempt* attempt);
+
 }  // namespace cb
