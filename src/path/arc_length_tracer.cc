@@ -1,12 +1,14 @@
 #include "path/arc_length_tracer.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include "path/stability.h"
 #include "path/step_solve.h"
 
 namespace cb {
+
 ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales& scales,
                                  Formulation& formulation, const PathOptions& options,
                                  PathObserver* observer)

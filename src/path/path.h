@@ -131,7 +131,7 @@ bool TangentPredictor(const ContactModel& model, const ContactScales& scales, co
                       double theta, double lambda_weight, Vec* du, double* dlambda,
                       std::string* why);
 
-// Traces max_steps arc-length steps from `initial`.
+// Traces max_steps arc-length steps from `initial` (ArcLengthTracer, arc_length_tracer.h).
 PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& scales,
                                const State& initial, Formulation& formulation,
                                const PathOptions& options, PathObserver* observer);
