@@ -1,12 +1,11 @@
 #include "path/path.h"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <optional>
-#include <vector>
+#include <stdexcept>
 
+#include "path/arc_length_tracer.h"
 #include "path/stability.h"
+#include "path/step_solve.h"
 
 namespace cb {
 
@@ -34,48 +33,14 @@ bool PathOptions::IsValid(std::string* why) const {
   return true;
 }
 
+void PathOptions::Validate() const {
+  std::string why;
+  if (!IsValid(&why)) throw std::invalid_argument("path options: " + why);
+}
+
 State ZeroState(const ContactModel& model) {
   return {Vec::Zero(model.num_dofs()), Vec::Zero(model.num_pairs()), 0.0};
 }
-
-namespace {
-
-// g = -phi(u).
-Vec GapsAt(const ContactModel& model, const Vec& u) {
-  Vec phi;
-  model.Gaps(u, &phi);
-  return -phi;
-}
-
-double HInner(const Vec& a, double la, const Vec& b, double lb, double w) {
-  return a.dot(b) + w * w * la * lb;
-}
-
-// H-distance from the point x_k + (du, dl) to the segment from x_{k-1} = x_k - (pu, pl) to x_k.
-double DistanceToPreviousSegment(const Vec& du, double dl, const Vec& pu, double pl, double w) {
-  const double pp = HInner(pu, pl, pu, pl, w);
-  // Parameter s of the closest point x_k - s (pu, pl), s in [0, 1].
-  const double s = pp > 0.0 ? std::clamp(-HInner(du, dl, pu, pl, w) / pp, 0.0, 1.0) : 0.0;
-  const Vec eu = du + s * pu;
-  const double el = dl + s * pl;
-  return std::sqrt(HInner(eu, el, eu, el, w));
-}
-
-// The guard against turning back (issue: "the path does not turn back on itself"). The other
-// root of (33) lies on the segment just traced (exactly at x_{k-1} when theta is unchanged),
-// so an answer is rejected when it points backwards AND lies within 5% of theta of that
-// segment. The inner product alone is not enough: at a kink the path may turn by more than
-// 90 degrees, and the correct root then also points backwards, but away from the segment.
-// On the first step there is no segment; the answer must not point against the tangent.
-bool TurnsBack(const StepPoint& point, const Vec& previous_du, double previous_dlambda,
-               bool have_segment, double theta, double w) {
-  if (HInner(point.du, point.dlambda, previous_du, previous_dlambda, w) > 0.0) return false;
-  if (!have_segment) return true;
-  return DistanceToPreviousSegment(point.du, point.dlambda, previous_du, previous_dlambda, w) <=
-         0.05 * theta;
-}
-
-}  // namespace
 
 bool TangentPredictor(const ContactModel& model, const ContactScales& scales, const State& state,
                       double theta, double lambda_weight, Vec* du, double* dlambda,
@@ -91,172 +56,6 @@ bool TangentPredictor(const ContactModel& model, const ContactScales& scales, co
   *dlambda = theta / norm;
   return true;
 }
-
-namespace {
-
-// Locates the kink of every pair whose status changed between accepted states a and b
-// (METHOD.md section 6), reporting each. Returns the verified kink nearest to b, if any.
-std::optional<State> LocateKinks(const ContactModel& model, const ContactScales& scales,
-                                 const State& a, const State& b, int step, Formulation& formulation,
-                                 const PathOptions& options, PathObserver* observer, int* found) {
-  const Vec ga = GapsAt(model, a.u);
-  const Vec gb = GapsAt(model, b.u);
-  const std::vector<bool> ca = ClosedPairs(scales, ga, a.r);
-  const std::vector<bool> cb = ClosedPairs(scales, gb, b.r);
-  const Vec du_step = b.u - a.u;
-  const double dl_step = b.lambda - a.lambda;
-  const double w = options.lambda_weight;
-  const double chord = std::sqrt(HInner(du_step, dl_step, du_step, dl_step, w));
-  std::optional<State> nearest;
-  double nearest_distance = std::numeric_limits<double>::infinity();
-  for (int p = 0; p < model.num_pairs(); ++p) {
-    if (ca[p] == cb[p]) continue;
-    // Switching function s = g/L + r/R changes sign at the kink; interpolate it linearly.
-    const double sa = ga[p] / scales.length + a.r[p] / scales.force;
-    const double sb = gb[p] / scales.length + b.r[p] / scales.force;
-    const double t = std::clamp(sa / (sa - sb), 0.0, 1.0);
-    StepProblem kink_step{&model, a, StepConstraint::Kink(p), scales};
-    StartPoint start;
-    start.kind = StartKind::kWarm;
-    start.du = t * du_step;
-    start.dlambda = t * dl_step;
-    start.r = a.r + t * (b.r - a.r);
-    KinkRecord record;
-    record.step = step;
-    record.pair = p;
-    record.result = formulation.Solve(kink_step, start, options.controls);
-    record.verdict = Judge(kink_step, record.result.point, options.tolerance);
-    const Vec& du = record.result.point.du;
-    const double dl = record.result.point.dlambda;
-    record.state = {a.u + du, record.result.point.r, a.lambda + dl};
-    // On the path between the two states: within two chords of each. (A step may cut across a
-    // corner of the path, so the kink need not lie inside the chord's ball.)
-    const Vec to_b = b.u - record.state.u;
-    const double dl_to_b = b.lambda - record.state.lambda;
-    const double from_a = std::sqrt(HInner(du, dl, du, dl, w));
-    const double to_b_norm = std::sqrt(HInner(to_b, dl_to_b, to_b, dl_to_b, w));
-    record.between = from_a <= 2.0 * chord && to_b_norm <= 2.0 * chord;
-    if (record.verdict.verified && record.between) {
-      ++*found;
-      if (to_b_norm < nearest_distance) {
-        nearest_distance = to_b_norm;
-        nearest = record.state;
-      }
-    }
-    if (observer != nullptr) observer->OnKink(record);
-  }
-  return nearest;
-}
-
-}  // namespace
-
-namespace {
-
-double HNorm(const Vec& du, double dl, double w) { return std::sqrt(HInner(du, dl, du, dl, w)); }
-
-int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
-  return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
-}
-
-// Brackets, by bisection of the arc length from accepted state a towards b, the first point
-// where the number of unstable modes changes from `modes_a`; each trial is an arc-length step
-// from a, predicted along the chord b - a and judged by the verdict. Searches t in
-// (t_from, chord] and leaves in `point` the verified trial nearest the change on a's side
-// (`point->state`, whose null vector is taken), and in *t_change and *past the first verified
-// point past it.
-void LocateModeChange(const ContactModel& model, const ContactScales& scales, const State& a,
-                      int modes_a, const State& b, double t_from, Formulation& formulation,
-                      const PathOptions& options, CriticalPointRecord* point, double* t_change,
-                      int* modes_after, State* past) {
-  const double w = options.lambda_weight;
-  const Vec chord_u = b.u - a.u;
-  const double chord_l = b.lambda - a.lambda;
-  const double chord = HNorm(chord_u, chord_l, w);
-  double lo = t_from;
-  double hi = chord;
-  *modes_after = UnstableModes(model, scales, b);
-  *past = b;
-  while (hi - lo > options.bifurcation_tolerance * chord && point->bisections < 60) {
-    const double t = 0.5 * (lo + hi);
-    StepProblem problem{&model, a, StepConstraint::ArcLength(t, w), scales};
-    StartPoint start;
-    start.kind = StartKind::kWarm;
-    start.du = chord_u * (t / chord);
-    start.dlambda = chord_l * (t / chord);
-    start.r = a.r + (t / chord) * (b.r - a.r);
-    const StepResult result = formulation.Solve(problem, start, options.controls);
-    ++point->bisections;
-    const Verdict verdict = Judge(problem, result.point, options.tolerance);
-    if (!verdict.verified) {
-      point->message = "a bisection step failed the verdict (" + result.message + ")";
-      *t_change = hi;
-      return;
-    }
-    const State trial{a.u + result.point.du, result.point.r, a.lambda + result.point.dlambda};
-    const int modes = UnstableModes(model, scales, trial);
-    if (modes == modes_a) {
-      lo = t;
-      point->state = trial;
-      point->verdict = verdict;
-    } else {
-      hi = t;
-      *modes_after = modes;
-      *past = trial;
-    }
-  }
-  *t_change = hi;
-  point->located = true;
-}
-
-// The orientation of the path at a state, moving along (du, dlambda): the sign of the
-// determinant of the step's Jacobian bordered by the arc-length row,
-//   det [A  -f; du^T  w^2 dlambda] = det A (w^2 dlambda + du^T K^-1 f)   (K^-1: on Z),
-// with sign det A = (-1)^(unstable modes). At a limit point both factors change sign; at a
-// simple bifurcation point only det A does. So a change of the count with no change of the
-// orientation is the limit point, and a change of the orientation is a bifurcation point (the
-// classical test; it holds when the two are a hair apart, as they are on P2).
-int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
-                const Vec& du, double dlambda, double w) {
-  const BorderedStiffness stiffness(model, scales, at);
-  Vec tangent;
-  if (stiffness.unstable_modes() < 0 ||
-      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
-    return 0;
-  }
-  const double schur = w * w * dlambda + du.dot(tangent);
-  const int det_sign = stiffness.unstable_modes() % 2 == 0 ? 1 : -1;
-  return schur > 0.0 ? det_sign : (schur < 0.0 ? -det_sign : 0);
-}
-
-// The direction to leave a bifurcation point along: the null vector there, made orthogonal to
-// the tangent K^-1 f (a limit mode close by, as on P2, dominates the tangent) and signed so
-// that its largest component is positive (reproducible).
-bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
-                     Vec* mode, std::string* why) {
-  const BorderedStiffness stiffness(model, scales, at);
-  Mat basis;
-  Vec tangent;
-  if (!stiffness.NullSpace(1, 4, &basis) ||
-      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
-    *why = "no null vector at the bifurcation point: " + stiffness.message();
-    return false;
-  }
-  *mode = basis.col(0);
-  const double tt = tangent.squaredNorm();
-  if (tt > 0.0) *mode -= (mode->dot(tangent) / tt) * tangent;
-  const double norm = mode->norm();
-  if (!(norm > 0.0)) {
-    *why = "the null vector at the bifurcation point is the path's own tangent";
-    return false;
-  }
-  *mode /= norm;
-  Eigen::Index largest = 0;
-  mode->cwiseAbs().maxCoeff(&largest);
-  if ((*mode)[largest] < 0.0) *mode = -*mode;
-  return true;
-}
-
-}  // namespace
 
 const char* ToString(BifurcationMode mode) {
   switch (mode) {
@@ -296,261 +95,13 @@ const char* ToString(CriticalPointRecord::Kind kind) {
 PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& scales,
                                const State& initial, Formulation& formulation,
                                const PathOptions& options, PathObserver* observer) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
-  PathSummary summary;
-  summary.final_state = initial;
-  State state = initial;
-  const double nominal = options.arc_length;
-  const double w = options.lambda_weight;
-  const bool watch_stability = options.bifurcations != BifurcationMode::kOff;
-
-  // The reference direction: the tangent predictor for the first step, then the previous
-  // accepted increment.
-  Vec previous_du;
-  double previous_dlambda = 0.0;
-  if (!TangentPredictor(model, scales, state, nominal, w, &previous_du, &previous_dlambda, &why)) {
-    summary.status = Status::kFailed;
-    summary.message = why;
-    return summary;
-  }
-  double theta = nominal;
-  std::any previous_warm_state;
-  // Stability of the current state and the load increment that led to it (for limit points).
-  int stability = watch_stability ? UnstableModes(model, scales, state) : -1;
-  double last_dlambda = 0.0;
-  int last_kinks = 0;
-  int branch = 0;
-  // Set when a bifurcation point was located: the next step leaves it along `switch_mode`.
-  std::optional<CriticalPointRecord> pending_switch;
-
-  for (int step = 1; step <= options.max_steps; ++step) {
-    bool accepted = false;
-    StepAttempt attempt;
-    const bool switching = pending_switch.has_value();
-    const State base = switching ? pending_switch->state : state;
-    const int cutbacks = switching ? 2 * options.max_cutbacks + 1 : options.max_cutbacks;
-    for (int cut = 0; cut <= cutbacks && !accepted; ++cut) {
-      StepProblem problem{&model, base, StepConstraint::ArcLength(theta, w), scales};
-      StartPoint start;
-      start.kind = options.start;
-      if (switching) {
-        // Off the bifurcation point along the null vector, at constant load: the root of (33)
-        // nearest to it is on the other branch (its tangent there is the null vector).
-        // Both senses of the null vector are tried before theta is cut (a solver may be drawn
-        // back to the branch already traced from one side and not from the other).
-        start.du = pending_switch->mode * (cut % 2 == 0 ? theta : -theta);
-        start.dlambda = 0.0;
-      } else {
-        // (38), (41): the previous increment, rescaled to this step's theta.
-        const double scale = theta / HNorm(previous_du, previous_dlambda, w);
-        start.du = previous_du * scale;
-        start.dlambda = previous_dlambda * scale;
-      }
-      start.r = base.r;  // (40)
-      start.warm_state = previous_warm_state;
-
-      attempt = StepAttempt();
-      attempt.step = step;
-      attempt.attempt = cut;
-      attempt.kind = ConstraintKind::kArcLength;
-      attempt.arc_length = theta;
-      attempt.branch = branch + (switching ? 1 : 0);
-      attempt.branch_switch = switching;
-      attempt.predicted_du = start.du;
-      attempt.predicted_dlambda = start.dlambda;
-      attempt.result = formulation.Solve(problem, start, options.controls);
-      ++summary.attempts;
-      const StepPoint& point = attempt.result.point;
-      attempt.verdict = Judge(problem, point, options.tolerance);
-      if (switching) {
-        // It must leave along the null vector, not return to the branch already traced.
-        attempt.reversed = std::abs(pending_switch->mode.dot(point.du)) < 0.5 * theta;
-      } else {
-        attempt.reversed = TurnsBack(point, previous_du, previous_dlambda, step > 1, theta, w);
-      }
-      attempt.accepted = attempt.verdict.verified && !attempt.reversed;
-      attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
-      attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), point.r);
-      if (attempt.result.status == Status::kStoppedByCaller) {
-        // An interrupted solve is not an accepted step, even when the point it stopped at
-        // happens to pass the verdict: the path stops before the step (the records and the
-        // summary's accepted_steps agree; tests/interrupt_test.cc).
-        attempt.accepted = false;
-        if (observer != nullptr) observer->OnAttempt(attempt);
-        summary.status = Status::kStoppedByCaller;
-        summary.message = "stopped by the caller at step " + std::to_string(step);
-        return summary;
-      }
-      if (attempt.accepted) {
-        accepted = true;
-        break;
-      }
-      if (observer != nullptr) observer->OnAttempt(attempt);
-      if (!switching || cut % 2 == 1) theta *= 0.5;
-    }
-    if (!accepted && switching) {
-      // Every attempt returned to the branch already traced (or failed): say so, and go on
-      // along that branch from the state accepted past the bifurcation point.
-      CriticalPointRecord failed = *pending_switch;
-      failed.switched = false;
-      failed.message = "the branch switch failed: every attempt along the null vector " +
-                       std::string("returned to the branch already traced or failed the verdict; ") +
-                       "the path goes on along it";
-      if (observer != nullptr) observer->OnCriticalPoint(failed);
-      pending_switch.reset();
-      if (watch_stability) stability = UnstableModes(model, scales, state);
-      theta = nominal;
-      --step;
-      continue;
-    }
-    if (!accepted) {
-      summary.status = Status::kFailed;
-      summary.message = "step " + std::to_string(step) + " failed the verdict after " +
-                        std::to_string(options.max_cutbacks) + " cut-backs of the arc length" +
-                        (switching ? " (leaving the bifurcation point of step " +
-                                         std::to_string(pending_switch->step) + ")"
-                                   : std::string());
-      return summary;
-    }
-    if (switching) {
-      ++branch;
-      ++summary.branch_switches;
-      pending_switch.reset();
-    }
-    // The direction to continue in: the increment just taken, or, past a kink, the increment
-    // from the kink (the path's direction on the branch it has turned onto). Without this a
-    // step that cut across a corner would be continued back along the new branch.
-    previous_du = attempt.result.point.du;
-    previous_dlambda = attempt.result.point.dlambda;
-    if (options.locate_kinks) {
-      const std::optional<State> kink = LocateKinks(model, scales, base, attempt.state, step,
-                                                    formulation, options, observer, &attempt.kinks);
-      summary.kinks += attempt.kinks;
-      if (kink) {
-        const Vec du_after = attempt.state.u - kink->u;
-        const double dl_after = attempt.state.lambda - kink->lambda;
-        if (HNorm(du_after, dl_after, w) > 1e-3 * theta) {
-          previous_du = du_after;
-          previous_dlambda = dl_after;
-        }
-      }
-    }
-    // Critical points between `base` and the new state.
-    std::vector<CriticalPointRecord> critical;
-    if (watch_stability) {
-      attempt.stability = UnstableModes(model, scales, attempt.state);
-      const double dlambda = attempt.result.point.dlambda;
-      if (!switching && step > 1 && dlambda * last_dlambda < 0.0) {
-        CriticalPointRecord limit;
-        limit.step = step;
-        limit.kind = CriticalPointRecord::Kind::kLimit;
-        limit.nonsmooth = attempt.kinks + last_kinks > 0;
-        limit.state = base;
-        limit.verdict.verified = true;  // an accepted state
-        limit.message = "the load parameter turned at the accepted state before this step";
-        critical.push_back(limit);
-        ++summary.limit_points;
-      }
-      if (!switching && stability >= 0 && attempt.stability >= 0 &&
-          attempt.stability != stability) {
-        const std::vector<bool> before = ClosedPairs(scales, GapsAt(model, base.u), base.r);
-        const std::vector<bool> after =
-            ClosedPairs(scales, GapsAt(model, attempt.state.u), attempt.state.r);
-        if (before != after || attempt.kinks > 0) {
-          CriticalPointRecord point;
-          point.step = step;
-          point.kind = CriticalPointRecord::Kind::kStabilityChange;
-          point.nonsmooth = true;
-          point.state = base;
-          point.verdict.verified = true;
-          point.message = "the number of unstable modes changed with the contact status";
-          critical.push_back(point);
-        } else {
-          // Each change of the count along the step is located; where the orientation changes
-          // across it, it is a bifurcation point (else the limit point, recorded above).
-          const Vec& chord_u = attempt.result.point.du;
-          const double chord_l = attempt.result.point.dlambda;
-          double t_from = 0.0;
-          int modes = stability;
-          State from = base;
-          for (int guard = 0; guard < 8 && modes != attempt.stability; ++guard) {
-            CriticalPointRecord point;
-            point.step = step;
-            point.kind = CriticalPointRecord::Kind::kBifurcation;
-            point.state = from;
-            point.verdict.verified = true;
-            double t_change = 0.0;
-            int modes_after = attempt.stability;
-            State past;
-            LocateModeChange(model, scales, base, modes, attempt.state, t_from, formulation,
-                             options, &point, &t_change, &modes_after, &past);
-            if (!point.located) {
-              point.kind = CriticalPointRecord::Kind::kStabilityChange;
-              critical.push_back(point);
-              break;
-            }
-            const int before = Orientation(model, scales, point.state, chord_u, chord_l, w);
-            const int after = Orientation(model, scales, past, chord_u, chord_l, w);
-            t_from = t_change;
-            modes = modes_after;
-            from = past;
-            if (before == after) continue;  // the limit point
-            ++summary.bifurcations;
-            if (!BranchDirection(model, scales, point.state, &point.mode, &why)) {
-              point.message = "located; " + why;
-              critical.push_back(point);
-              continue;
-            }
-            point.message = "located";
-            if (options.bifurcations == BifurcationMode::kSwitch &&
-                summary.branch_switches < options.max_branch_switches && !pending_switch &&
-                std::none_of(critical.begin(), critical.end(),
-                             [](const CriticalPointRecord& c) { return c.switched; })) {
-              point.switched = true;  // the next step leaves along point.mode
-              point.message += "; the next step leaves along the null vector";
-            }
-            critical.push_back(point);
-          }
-        }
-      }
-    }
-    if (observer != nullptr) observer->OnAttempt(attempt);
-    for (const CriticalPointRecord& point : critical) {
-      if (observer != nullptr) observer->OnCriticalPoint(point);
-      if (point.switched) pending_switch = point;
-    }
-    previous_warm_state = attempt.result.warm_state;
-    last_dlambda = attempt.result.point.dlambda;
-    last_kinks = attempt.kinks;
-    stability = attempt.stability;
-    state = attempt.state;
-    summary.final_state = state;
-    ++summary.accepted_steps;
-    theta = std::min(nominal, 2.0 * theta);
-    if (pending_switch) {
-      // The next step starts from the bifurcation point, not from the state just accepted
-      // past it on the branch already traced.
-      stability = UnstableModes(model, scales, pending_switch->state);
-      previous_warm_state = std::any();
-    }
-    if (options.controls.interrupted && options.controls.interrupted()) {
-      summary.status = Status::kStoppedByCaller;
-      summary.message = "stopped by the caller after step " + std::to_string(step);
-      return summary;
-    }
-  }
-  summary.status = Status::kConverged;
-  summary.message = std::to_string(summary.accepted_steps) + " steps accepted";
-  return summary;
+  return ArcLengthTracer(model, scales, formulation, options, observer).Run(initial);
 }
 
 PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scales,
                            const State& initial, double lambda, Formulation& formulation,
-                           const PathOptions& options, PathObserver* observer,
-                           const State* guess) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
+                           const PathOptions& options, PathObserver* observer, const State* guess) {
+  options.Validate();
   StepProblem problem{&model, initial, StepConstraint::FixedLoad(lambda), scales};
   StartPoint start;
   start.kind = options.start;
@@ -562,12 +113,8 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   attempt.kind = ConstraintKind::kFixedLoad;
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
-  attempt.result = formulation.Solve(problem, start, options.controls);
-  attempt.verdict = Judge(problem, attempt.result.point, options.tolerance);
+  RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
   attempt.accepted = attempt.verdict.verified;
-  attempt.state = {initial.u + attempt.result.point.du, attempt.result.point.r,
-                   initial.lambda + attempt.result.point.dlambda};
-  attempt.n_contact = CountContacts(problem, GapsAt(model, attempt.state.u), attempt.state.r);
   if (observer != nullptr) observer->OnAttempt(attempt);
 
   PathSummary summary;

@@ -35,9 +35,11 @@ struct PathOptions {
   // kSwitch: the bifurcation point is bracketed by bisection of the arc length until the
   // bracket is below this fraction of theta.
   double bifurcation_tolerance = 1e-6;
-  SolveControls controls;    // per-step time limit and interrupt hook
+  SolveControls controls;  // per-step time limit and interrupt hook
 
   bool IsValid(std::string* why) const;
+  // Throws std::invalid_argument("path options: " + why) when not valid.
+  void Validate() const;
 };
 
 // One solve of one step.
@@ -93,7 +95,7 @@ struct CriticalPointRecord {
   bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance
   int bisections = 0;
   Verdict verdict;
-  Vec mode;                    // kBifurcation: the null vector (unit norm)
+  Vec mode;               // kBifurcation: the null vector (unit norm)
   bool switched = false;  // the path left this point onto the other branch
   std::string message;
 };
@@ -129,7 +131,7 @@ bool TangentPredictor(const ContactModel& model, const ContactScales& scales, co
                       double theta, double lambda_weight, Vec* du, double* dlambda,
                       std::string* why);
 
-// Traces max_steps arc-length steps from `initial`.
+// Traces max_steps arc-length steps from `initial` (ArcLengthTracer, arc_length_tracer.h).
 PathSummary TraceArcLengthPath(const ContactModel& model, const ContactScales& scales,
                                const State& initial, Formulation& formulation,
                                const PathOptions& options, PathObserver* observer);

@@ -1,66 +1,52 @@
 #include "path/replay.h"
 
-#include <cmath>
-#include <stdexcept>
+#include <any>
+#include <string>
+
+#include "path/arc_length_norm.h"
+#include "path/step_solve.h"
 
 namespace cb {
-
-void PathRecorder::OnAttempt(const StepAttempt& attempt) {
-  if (!attempt.accepted) return;
-  states.push_back(attempt.state);
-  increments.push_back(attempt.result.point);
-  StepPoint prediction;
-  prediction.du = attempt.predicted_du;
-  prediction.dlambda = attempt.predicted_dlambda;
-  predictions.push_back(prediction);
-  arc_lengths.push_back(attempt.arc_length);
-  kinds.push_back(attempt.kind);
-}
 
 PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, const State& initial,
                        const PathRecorder& reference, Formulation& formulation,
                        const PathOptions& options, PathObserver* observer) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("path options: " + why);
+  options.Validate();
   PathSummary summary;
   summary.final_state = initial;
-  const int steps = static_cast<int>(reference.states.size());
+  const int steps = static_cast<int>(reference.steps.size());
   const double w = options.lambda_weight;
   std::any previous_warm_state;
   for (int k = 1; k <= steps; ++k) {
-    const State& base = k == 1 ? initial : reference.states[k - 2];
-    const ConstraintKind kind = reference.kinds[k - 1];
+    const RecordedStep& reference_step = reference.steps[k - 1];
+    const State& base = k == 1 ? initial : reference.steps[k - 2].state;
+    const ConstraintKind kind = reference_step.kind;
     StepConstraint constraint =
         kind == ConstraintKind::kFixedLoad
-            ? StepConstraint::FixedLoad(base.lambda + reference.increments[k - 1].dlambda)
-            : StepConstraint::ArcLength(reference.arc_lengths[k - 1], w);
+            ? StepConstraint::FixedLoad(base.lambda + reference_step.increment.dlambda)
+            : StepConstraint::ArcLength(reference_step.arc_length, w);
     StepProblem problem{&model, base, constraint, scales};
 
     StartPoint start;
     start.kind = options.start;
     start.r = base.r;
     start.warm_state = previous_warm_state;
-    start.du = reference.predictions[k - 1].du;
-    start.dlambda = reference.predictions[k - 1].dlambda;
+    start.du = reference_step.prediction.du;
+    start.dlambda = reference_step.prediction.dlambda;
 
     StepAttempt attempt;
     attempt.step = k;
     attempt.kind = kind;
     attempt.arc_length = kind == ConstraintKind::kArcLength ? constraint.arc_length : 0.0;
-    attempt.result = formulation.Solve(problem, start, options.controls);
+    RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
     ++summary.attempts;
     const StepPoint& point = attempt.result.point;
-    attempt.verdict = Judge(problem, point, options.tolerance);
     // The reference direction decides "forward": the answer must not point against the
     // reference step (the other root of (33)).
-    const StepPoint& ref = reference.increments[k - 1];
+    const StepPoint& ref = reference_step.increment;
     attempt.reversed = kind == ConstraintKind::kArcLength &&
-                       point.du.dot(ref.du) + w * w * point.dlambda * ref.dlambda <= 0.0;
+                       HInner(point.du, point.dlambda, ref.du, ref.dlambda, w) <= 0.0;
     attempt.accepted = attempt.verdict.verified && !attempt.reversed;
-    attempt.state = {base.u + point.du, point.r, base.lambda + point.dlambda};
-    Vec phi;
-    model.Gaps(attempt.state.u, &phi);
-    attempt.n_contact = CountContacts(problem, -phi, point.r);
     if (observer != nullptr) observer->OnAttempt(attempt);
     if (attempt.accepted) {
       ++summary.accepted_steps;

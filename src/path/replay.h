@@ -3,29 +3,10 @@
 // state, so that a failure at step k does not change the work given at step k + 1.
 #pragma once
 
-#include <vector>
-
 #include "path/path.h"
+#include "path/path_recorder.h"
 
 namespace cb {
-
-// The accepted states of a path and the increments that led to them, recorded by observing
-// TraceArcLengthPath (or SolveFixedLoad).
-class PathRecorder final : public PathObserver {
- public:
-  void OnAttempt(const StepAttempt& attempt) override;
-  void OnKink(const KinkRecord& kink) override { kinks.push_back(kink); }
-
-  // states[k] is the state after accepted step k + 1; increments[k] the increment of that step
-  // (du, r, dlambda), predictions[k] the predicted increment its warm start was given, and
-  // arc_lengths[k] the theta it was taken with.
-  std::vector<State> states;
-  std::vector<StepPoint> increments;
-  std::vector<StepPoint> predictions;
-  std::vector<double> arc_lengths;
-  std::vector<ConstraintKind> kinds;
-  std::vector<KinkRecord> kinks;
-};
 
 // Replays the reference path's steps with `formulation`. Step k (1-based) starts from the
 // reference state after step k - 1 (the initial state for k = 1) with the reference step's own

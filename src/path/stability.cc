@@ -1,11 +1,20 @@
 #include "path/stability.h"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/QR>
-
 namespace cb {
+
+int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
+  return BorderedStiffness(model, scales, state, BorderedStiffness::Use::kModes).unstable_modes();
+}
+
+Vec GapsAt(const ContactModel& model, const Vec& u) {
+  Vec phi;
+  model.Gaps(u, &phi);
+  return -phi;
+}
 
 std::vector<bool> ClosedPairs(const ContactScales& scales, const Vec& g, const Vec& r) {
   std::vector<bool> closed(g.size());
@@ -21,9 +30,7 @@ BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactSca
   model.Stiffness(state.u, &stiffness);
   model.GapCurvature(state.u, state.r, &curvature);
   model.GapJacobian(state.u, &gap_jacobian);
-  Vec phi;
-  model.Gaps(state.u, &phi);
-  const std::vector<bool> closed = ClosedPairs(scales, -phi, state.r);
+  const std::vector<bool> closed = ClosedPairs(scales, GapsAt(model, state.u), state.r);
   for (int p = 0; p < model.num_pairs(); ++p) {
     if (closed[p]) closed_pairs_.push_back(p);
   }
@@ -67,7 +74,8 @@ BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactSca
   }
   penalised += (1e6 * std::max(diagonal, 1e-300)) * SpMat(closed_rows.transpose() * closed_rows);
   bool finite = true;
-  for (int k = 0; k < bordered.nonZeros(); ++k) finite = finite && std::isfinite(bordered.valuePtr()[k]);
+  for (int k = 0; k < bordered.nonZeros(); ++k)
+    finite = finite && std::isfinite(bordered.valuePtr()[k]);
   if (!finite) {
     message_ = "the bordered stiffness has a non-finite entry";
     return;

@@ -63,6 +63,13 @@ class BorderedStiffness {
   std::string message_;
 };
 
+// The number of unstable modes at `state` (BorderedStiffness::unstable_modes, which factorises
+// for them alone).
+int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state);
+
+// The gaps g = -phi(u) of the model at u.
+Vec GapsAt(const ContactModel& model, const Vec& u);
+
 // Contact status of each pair at (g, r): closed when min(g/L, -r/R) picks the gap.
 std::vector<bool> ClosedPairs(const ContactScales& scales, const Vec& g, const Vec& r);
 

@@ -1,0 +1,218 @@
+#include "path/arc_length_tracer.h"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "path/stability.h"
+#include "path/step_solve.h"
+
+namespace cb {
+
+ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales& scales,
+                                 Formulation& formulation, const PathOptions& options,
+                                 PathObserver* observer)
+    : model_(model),
+      scales_(scales),
+      formulation_(formulation),
+      options_(options),
+      observer_(observer != nullptr ? *observer : no_observer_),
+      kink_locator_(model, scales, formulation, options),
+      critical_point_finder_(model, scales, formulation, options) {
+  options.Validate();
+}
+
+PathSummary ArcLengthTracer::Run(const State& initial) {
+  if (!Start(initial)) return summary_;
+  while (summary_.accepted_steps < options_.max_steps) {
+    const int step = summary_.accepted_steps + 1;
+    const std::unique_ptr<StepLeg> leg = NextLeg();
+    StepAttempt attempt;
+    const Outcome outcome = AttemptWithCutbacks(step, *leg, &attempt);
+    if (outcome == Outcome::kStoppedByCaller) {
+      return Finish(Status::kStoppedByCaller,
+                    "stopped by the caller at step " + std::to_string(step));
+    }
+    if (outcome == Outcome::kRejected) {
+      if (leg->switches_branch()) {
+        AbandonBranchSwitch();  // not a failure of the path: it goes on along its branch
+        continue;
+      }
+      return Finish(Status::kFailed, "step " + std::to_string(step) + " failed the verdict after " +
+                                         std::to_string(options_.max_cutbacks) +
+                                         " cut-backs of the arc length");
+    }
+    if (leg->switches_branch()) EnterNewBranch();
+    LocateKinksAndRedirect(*leg, &attempt);
+    const std::vector<CriticalPointRecord> critical = DetectCriticalPoints(*leg, &attempt);
+    Accept(attempt, critical);
+    if (InterruptedByCaller()) {
+      return Finish(Status::kStoppedByCaller,
+                    "stopped by the caller after step " + std::to_string(step));
+    }
+  }
+  return Finish(Status::kConverged, std::to_string(summary_.accepted_steps) + " steps accepted");
+}
+
+// The first heading is the tangent predictor at `initial`.
+bool ArcLengthTracer::Start(const State& initial) {
+  summary_ = PathSummary();
+  summary_.final_state = initial;
+  at_ = Position();
+  next_ = NextStep();
+  at_.accepted.state = initial;
+  std::string why;
+  if (!TangentPredictor(model_, scales_, initial, options_.arc_length, options_.lambda_weight,
+                        &at_.heading.du, &at_.heading.dlambda, &why)) {
+    Finish(Status::kFailed, why);
+    return false;
+  }
+  if (options_.bifurcations != BifurcationMode::kOff) {
+    at_.accepted.unstable_modes = UnstableModes(model_, scales_, initial);
+  }
+  next_.theta = options_.arc_length;
+  return true;
+}
+
+std::unique_ptr<StepLeg> ArcLengthTracer::NextLeg() const {
+  if (next_.branch_switch) {
+    return std::make_unique<BranchSwitchLeg>(*next_.branch_switch, at_.branch + 1);
+  }
+  // Before the first accepted step the heading is the tangent: no segment to turn back onto.
+  return std::make_unique<ContinuationLeg>(at_.accepted, at_.branch, at_.heading,
+                                           summary_.accepted_steps > 0, options_.lambda_weight);
+}
+
+// Reports every rejected attempt; the accepted one is reported by Accept, after its kinks.
+ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const StepLeg& leg,
+                                                              StepAttempt* attempt) {
+  const int per_theta = leg.predictions_per_arc_length();
+  for (int index = 0; index < per_theta * (options_.max_cutbacks + 1); ++index) {
+    *attempt = Attempt(step, index, leg);
+    if (attempt->result.status == Status::kStoppedByCaller) {
+      // An interrupted solve is not an accepted step, even when the point it stopped at
+      // happens to pass the verdict: the path stops before the step (the records and the
+      // summary's accepted_steps agree; tests/interrupt_test.cc).
+      attempt->accepted = false;
+      observer_.OnAttempt(*attempt);
+      return Outcome::kStoppedByCaller;
+    }
+    if (attempt->accepted) return Outcome::kAccepted;
+    observer_.OnAttempt(*attempt);
+    if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
+  }
+  return Outcome::kRejected;
+}
+
+StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
+  const State& base = leg.origin().state;
+  const double theta = next_.theta;
+  StepProblem problem{&model_, base, StepConstraint::ArcLength(theta, options_.lambda_weight),
+                      scales_};
+  Increment prediction = leg.Predict(index, theta);
+  StartPoint start;
+  start.kind = options_.start;
+  start.du = std::move(prediction.du);
+  start.dlambda = prediction.dlambda;
+  start.r = base.r;  // (40)
+  start.warm_state = next_.warm_state;
+
+  StepAttempt attempt;
+  attempt.step = step;
+  attempt.attempt = index;
+  attempt.kind = ConstraintKind::kArcLength;
+  attempt.arc_length = theta;
+  attempt.branch = leg.branch();
+  attempt.branch_switch = leg.switches_branch();
+  attempt.predicted_du = start.du;
+  attempt.predicted_dlambda = start.dlambda;
+  RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
+  ++summary_.attempts;
+  attempt.reversed = leg.Reversed(attempt.result.point, theta);
+  attempt.accepted = attempt.verdict.verified && !attempt.reversed;
+  return attempt;
+}
+
+// Every attempt along the null vector returned to the branch already traced (or failed): say
+// so, and go on along that branch from the state accepted past the bifurcation point, at the
+// nominal arc length (and, as the switch, without a backend state to reuse).
+void ArcLengthTracer::AbandonBranchSwitch() {
+  CriticalPointRecord failed = std::move(*next_.branch_switch);
+  next_.branch_switch.reset();
+  failed.switched = false;
+  failed.message = "the branch switch failed: every attempt along the null vector " +
+                   std::string("returned to the branch already traced or failed the verdict; ") +
+                   "the path goes on along it";
+  observer_.OnCriticalPoint(failed);
+  next_.theta = options_.arc_length;
+}
+
+void ArcLengthTracer::EnterNewBranch() {
+  ++at_.branch;
+  ++summary_.branch_switches;
+  next_.branch_switch.reset();
+}
+
+// The direction to continue in: the increment just taken, or, past a kink, the increment from
+// the kink (the path's direction on the branch it has turned onto). Without this a step that
+// cut across a corner would be continued back along the new branch.
+void ArcLengthTracer::LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* attempt) {
+  at_.heading = {attempt->result.point.du, attempt->result.point.dlambda};
+  if (!options_.locate_kinks) return;
+  const KinksOfStep kinks =
+      kink_locator_.Locate(attempt->step, leg.origin().state, attempt->state, observer_);
+  attempt->kinks = kinks.found;
+  summary_.kinks += attempt->kinks;
+  if (!kinks.nearest) return;
+  const Vec du_after = attempt->state.u - kinks.nearest->u;
+  const double dl_after = attempt->state.lambda - kinks.nearest->lambda;
+  if (HNorm(du_after, dl_after, options_.lambda_weight) > 1e-3 * attempt->arc_length) {
+    at_.heading = {du_after, dl_after};
+  }
+}
+
+// Counts the unstable modes at the new state, when they are watched, and finds the critical
+// points between the step's origin and it.
+std::vector<CriticalPointRecord> ArcLengthTracer::DetectCriticalPoints(const StepLeg& leg,
+                                                                       StepAttempt* attempt) {
+  if (options_.bifurcations == BifurcationMode::kOff) return {};
+  attempt->stability = UnstableModes(model_, scales_, attempt->state);
+  const bool may_switch = options_.bifurcations == BifurcationMode::kSwitch &&
+                          summary_.branch_switches < options_.max_branch_switches;
+  std::vector<CriticalPointRecord> critical =
+      critical_point_finder_.Find(leg.origin(), *attempt, may_switch);
+  for (const CriticalPointRecord& point : critical) {
+    if (point.kind == CriticalPointRecord::Kind::kLimit) ++summary_.limit_points;
+    if (point.kind == CriticalPointRecord::Kind::kBifurcation) ++summary_.bifurcations;
+  }
+  return critical;
+}
+
+void ArcLengthTracer::Accept(const StepAttempt& attempt,
+                             const std::vector<CriticalPointRecord>& critical) {
+  observer_.OnAttempt(attempt);
+  for (const CriticalPointRecord& point : critical) {
+    observer_.OnCriticalPoint(point);
+    if (point.switched) next_.branch_switch = point;
+  }
+  at_.accepted = {attempt.state, attempt.stability,
+                  StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks}};
+  summary_.final_state = attempt.state;
+  ++summary_.accepted_steps;
+  next_.theta = std::min(options_.arc_length, 2.0 * next_.theta);
+  // A step leaving a bifurcation point starts there, not where this solve ended: this solve's
+  // backend state is no start for it.
+  next_.warm_state = next_.branch_switch ? std::any() : attempt.result.warm_state;
+}
+
+bool ArcLengthTracer::InterruptedByCaller() const {
+  return options_.controls.interrupted && options_.controls.interrupted();
+}
+
+PathSummary ArcLengthTracer::Finish(Status status, std::string message) {
+  summary_.status = status;
+  summary_.message = std::move(message);
+  return summary_;
+}
+
+}  // namespace cb

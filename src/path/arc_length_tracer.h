@@ -1,0 +1,79 @@
+// The arc-length path driver (METHOD.md sections 3-6) behind TraceArcLengthPath. Each step of
+// Run() is a sequence of named steps: choose how the step leaves its origin (a StepLeg: along
+// the branch, or off a bifurcation point), attempt it with cut-backs of the arc length, locate
+// the kinks within it and redirect the path past them, detect the critical points within it,
+// and accept it.
+#pragma once
+
+#include <any>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "path/arc_length_norm.h"
+#include "path/critical_points.h"
+#include "path/kink_location.h"
+#include "path/path.h"
+#include "path/step_leg.h"
+#include "path/step_origin.h"
+
+namespace cb {
+
+class ArcLengthTracer {
+ public:
+  // Throws std::invalid_argument naming the bad field of `options`. The arguments must outlive
+  // the tracer; `observer` may be null.
+  ArcLengthTracer(const ContactModel& model, const ContactScales& scales, Formulation& formulation,
+                  const PathOptions& options, PathObserver* observer);
+
+  // Traces options.max_steps accepted steps from `initial`.
+  PathSummary Run(const State& initial);
+
+ private:
+  // How the attempts of one step ended.
+  enum class Outcome { kAccepted, kRejected, kStoppedByCaller };
+
+  // Where the path is: its last accepted state (the origin of the next step along the branch),
+  // the direction it goes on in, and the branch it is on (0 initially, +1 per switch).
+  struct Position {
+    StepOrigin accepted;
+    Increment heading;
+    int branch = 0;
+  };
+
+  // How the next step is taken: its arc length, the backend state its warm start may reuse,
+  // and the bifurcation point it is to leave from, if one was located for a switch.
+  struct NextStep {
+    double theta = 0.0;
+    std::any warm_state;
+    std::optional<CriticalPointRecord> branch_switch;
+  };
+
+  bool Start(const State& initial);
+  std::unique_ptr<StepLeg> NextLeg() const;
+  Outcome AttemptWithCutbacks(int step, const StepLeg& leg, StepAttempt* attempt);
+  StepAttempt Attempt(int step, int index, const StepLeg& leg);
+  void AbandonBranchSwitch();
+  void EnterNewBranch();
+  void LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* attempt);
+  std::vector<CriticalPointRecord> DetectCriticalPoints(const StepLeg& leg, StepAttempt* attempt);
+  void Accept(const StepAttempt& attempt, const std::vector<CriticalPointRecord>& critical);
+  bool InterruptedByCaller() const;
+  PathSummary Finish(Status status, std::string message);
+
+  const ContactModel& model_;
+  const ContactScales& scales_;
+  Formulation& formulation_;
+  const PathOptions& options_;
+  PathObserver no_observer_;
+  PathObserver& observer_;
+  const KinkLocator kink_locator_;
+  const CriticalPointFinder critical_point_finder_;
+
+  PathSummary summary_;
+  Position at_;
+  NextStep next_;
+};
+
+}  // namespace cb

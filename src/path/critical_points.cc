@@ -1,0 +1,207 @@
+#include "path/critical_points.h"
+
+#include <optional>
+#include <string>
+
+#include "path/arc_length_norm.h"
+#include "path/stability.h"
+#include "path/step_solve.h"
+
+namespace cb {
+namespace {
+
+// A limit point at the origin: the load parameter turned there, between the previous step on
+// the branch and this one.
+std::optional<CriticalPointRecord> LimitPoint(const StepOrigin& origin, const StepAttempt& taken) {
+  if (!origin.previous || !(taken.result.point.dlambda * origin.previous->dlambda < 0.0)) {
+    return std::nullopt;
+  }
+  CriticalPointRecord limit;
+  limit.step = taken.step;
+  limit.kind = CriticalPointRecord::Kind::kLimit;
+  // A kink in one of the two steps around it: a limit point made by a contact change.
+  limit.nonsmooth = taken.kinks + origin.previous->kinks > 0;
+  limit.state = origin.state;
+  limit.verdict.verified = true;  // an accepted state
+  limit.message = "the load parameter turned at the accepted state before this step";
+  return limit;
+}
+
+// The orientation of the path at a state, moving along (du, dlambda): the sign of the
+// determinant of the step's Jacobian bordered by the arc-length row,
+//   det [A  -f; du^T  w^2 dlambda] = det A (w^2 dlambda + du^T K^-1 f)   (K^-1: on Z),
+// with sign det A = (-1)^(unstable modes). At a limit point both factors change sign; at a
+// simple bifurcation point only det A does. So a change of the count with no change of the
+// orientation is the limit point, and a change of the orientation is a bifurcation point (the
+// classical test; it holds when the two are a hair apart, as they are on P2).
+int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
+                const Vec& du, double dlambda, double w) {
+  const BorderedStiffness stiffness(model, scales, at);
+  Vec tangent;
+  if (stiffness.unstable_modes() < 0 ||
+      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
+    return 0;
+  }
+  const double schur = w * w * dlambda + du.dot(tangent);
+  const int det_sign = stiffness.unstable_modes() % 2 == 0 ? 1 : -1;
+  return schur > 0.0 ? det_sign : (schur < 0.0 ? -det_sign : 0);
+}
+
+// The direction to leave a bifurcation point along: the null vector there, made orthogonal to
+// the tangent K^-1 f (a limit mode close by, as on P2, dominates the tangent) and signed so
+// that its largest component is positive (reproducible).
+bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
+                     Vec* mode, std::string* why) {
+  const BorderedStiffness stiffness(model, scales, at);
+  Mat basis;
+  Vec tangent;
+  if (!stiffness.NullSpace(1, 4, &basis) ||
+      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
+    *why = "no null vector at the bifurcation point: " + stiffness.message();
+    return false;
+  }
+  *mode = basis.col(0);
+  const double tt = tangent.squaredNorm();
+  if (tt > 0.0) *mode -= (mode->dot(tangent) / tt) * tangent;
+  const double norm = mode->norm();
+  if (!(norm > 0.0)) {
+    *why = "the null vector at the bifurcation point is the path's own tangent";
+    return false;
+  }
+  *mode /= norm;
+  Eigen::Index largest = 0;
+  mode->cwiseAbs().maxCoeff(&largest);
+  if ((*mode)[largest] < 0.0) *mode = -*mode;
+  return true;
+}
+
+}  // namespace
+
+CriticalPointFinder::CriticalPointFinder(const ContactModel& model, const ContactScales& scales,
+                                         Formulation& formulation, const PathOptions& options)
+    : model_(model), scales_(scales), formulation_(formulation), options_(options) {}
+
+std::vector<CriticalPointRecord> CriticalPointFinder::Find(const StepOrigin& origin,
+                                                           const StepAttempt& taken,
+                                                           bool may_switch) const {
+  std::vector<CriticalPointRecord> critical;
+  if (std::optional<CriticalPointRecord> limit = LimitPoint(origin, taken)) {
+    critical.push_back(*limit);
+  }
+  if (origin.unstable_modes < 0 || taken.stability < 0 ||
+      taken.stability == origin.unstable_modes) {
+    return critical;
+  }
+  if (ContactStatusChanged(origin.state, taken)) {
+    CriticalPointRecord point;
+    point.step = taken.step;
+    point.kind = CriticalPointRecord::Kind::kStabilityChange;
+    point.nonsmooth = true;
+    point.state = origin.state;
+    point.verdict.verified = true;
+    point.message = "the number of unstable modes changed with the contact status";
+    critical.push_back(point);
+  } else {
+    LocateModeChanges(origin, taken, may_switch, &critical);
+  }
+  return critical;
+}
+
+bool CriticalPointFinder::ContactStatusChanged(const State& origin,
+                                               const StepAttempt& taken) const {
+  const std::vector<bool> before = ClosedPairs(scales_, GapsAt(model_, origin.u), origin.r);
+  const std::vector<bool> after =
+      ClosedPairs(scales_, GapsAt(model_, taken.state.u), taken.state.r);
+  return before != after || taken.kinks > 0;
+}
+
+// Each change of the count along the step is located; where the orientation changes across
+// it, it is a bifurcation point (else the limit point, recorded by LimitPoint).
+void CriticalPointFinder::LocateModeChanges(const StepOrigin& origin, const StepAttempt& taken,
+                                            bool may_switch,
+                                            std::vector<CriticalPointRecord>* critical) const {
+  const double w = options_.lambda_weight;
+  const Vec& chord_u = taken.result.point.du;
+  const double chord_l = taken.result.point.dlambda;
+  double t_from = 0.0;
+  int modes = origin.unstable_modes;
+  State from = origin.state;
+  bool switch_claimed = false;
+  for (int guard = 0; guard < 8 && modes != taken.stability; ++guard) {
+    CriticalPointRecord point;
+    point.step = taken.step;
+    point.kind = CriticalPointRecord::Kind::kBifurcation;
+    point.state = from;
+    point.verdict.verified = true;
+    const PastTheChange past =
+        BracketModeChange(origin.state, modes, taken.state, taken.stability, t_from, &point);
+    if (!point.located) {
+      point.kind = CriticalPointRecord::Kind::kStabilityChange;
+      critical->push_back(point);
+      break;
+    }
+    const int before = Orientation(model_, scales_, point.state, chord_u, chord_l, w);
+    const int after = Orientation(model_, scales_, past.state, chord_u, chord_l, w);
+    t_from = past.t;
+    modes = past.modes;
+    from = past.state;
+    if (before == after) continue;  // the limit point
+    std::string why;
+    if (!BranchDirection(model_, scales_, point.state, &point.mode, &why)) {
+      point.message = "located; " + why;
+      critical->push_back(point);
+      continue;
+    }
+    point.message = "located";
+    if (may_switch && !switch_claimed) {
+      point.switched = true;
+      switch_claimed = true;
+      point.message += "; the next step leaves along the null vector";
+    }
+    critical->push_back(point);
+  }
+}
+
+// Brackets, by bisection of the arc length from accepted state a towards b, the first point
+// where the number of unstable modes changes from `modes_a` (b has `modes_b`); each trial is
+// an arc-length step from a, predicted along the chord b - a and judged by the verdict.
+// Searches t in (t_from, chord] and leaves in `point` the verified trial nearest the change on
+// a's side (`point->state`, whose null vector is taken), the bisections and whether it was
+// located (else `point->message` says why not).
+CriticalPointFinder::PastTheChange CriticalPointFinder::BracketModeChange(
+    const State& a, int modes_a, const State& b, int modes_b, double t_from,
+    CriticalPointRecord* point) const {
+  const double w = options_.lambda_weight;
+  const Vec chord_u = b.u - a.u;
+  const double chord_l = b.lambda - a.lambda;
+  const double chord = HNorm(chord_u, chord_l, w);
+  double lo = t_from;
+  PastTheChange past{chord, modes_b, b};
+  while (past.t - lo > options_.bifurcation_tolerance * chord && point->bisections < 60) {
+    const double t = 0.5 * (lo + past.t);
+    StepProblem problem{&model_, a, StepConstraint::ArcLength(t, w), scales_};
+    StartPoint start;
+    start.kind = StartKind::kWarm;
+    start.du = chord_u * (t / chord);
+    start.dlambda = chord_l * (t / chord);
+    start.r = a.r + (t / chord) * (b.r - a.r);
+    const JudgedStep trial = SolveAndJudge(formulation_, problem, start, options_);
+    ++point->bisections;
+    if (!trial.verdict.verified) {
+      point->message = "a bisection step failed the verdict (" + trial.result.message + ")";
+      return past;
+    }
+    const int modes = UnstableModes(model_, scales_, trial.state);
+    if (modes == modes_a) {
+      lo = t;
+      point->state = trial.state;
+      point->verdict = trial.verdict;
+    } else {
+      past = {t, modes, trial.state};
+    }
+  }
+  point->located = true;
+  return past;
+}
+
+}  // namespace cb

@@ -1,0 +1,34 @@
+// Kink location (METHOD.md section 6): where a pair's contact status changes between two
+// accepted states, the path has a nonsmooth point with g_p = r_p = 0, found by solving
+// (29)-(32) with (53) in place of the arc-length row.
+#pragma once
+
+#include <optional>
+
+#include "path/path.h"
+
+namespace cb {
+
+// The kinks located within one accepted step.
+struct KinksOfStep {
+  int found = 0;                 // verified and on the path between the two states
+  std::optional<State> nearest;  // of those, the nearest to the state after the step
+};
+
+class KinkLocator {
+ public:
+  KinkLocator(const ContactModel& model, const ContactScales& scales, Formulation& formulation,
+              const PathOptions& options);
+
+  // Solves (53) for every pair whose status differs between accepted states a and b (the step
+  // `step` from a to b), reporting each through observer.OnKink.
+  KinksOfStep Locate(int step, const State& a, const State& b, PathObserver& observer) const;
+
+ private:
+  const ContactModel& model_;
+  const ContactScales& scales_;
+  Formulation& formulation_;
+  const PathOptions& options_;
+};
+
+}  // namespace cb

@@ -1,0 +1,38 @@
+#include "path/step_leg.h"
+
+#include <cmath>
+#include <utility>
+
+#include "path/turn_back.h"
+
+namespace cb {
+
+ContinuationLeg::ContinuationLeg(StepOrigin origin, int branch, Increment heading,
+                                 bool heading_is_a_step, double lambda_weight)
+    : StepLeg(std::move(origin), branch),
+      heading_(std::move(heading)),
+      heading_is_a_step_(heading_is_a_step),
+      lambda_weight_(lambda_weight) {}
+
+Increment ContinuationLeg::Predict(int /*attempt*/, double theta) const {
+  const double scale = theta / HNorm(heading_.du, heading_.dlambda, lambda_weight_);
+  return {heading_.du * scale, heading_.dlambda * scale};
+}
+
+bool ContinuationLeg::Reversed(const StepPoint& answer, double theta) const {
+  return TurnsBack(answer, heading_, heading_is_a_step_, theta, lambda_weight_);
+}
+
+BranchSwitchLeg::BranchSwitchLeg(const CriticalPointRecord& bifurcation, int new_branch)
+    : StepLeg(StepOrigin{bifurcation.state, -1, std::nullopt}, new_branch),
+      mode_(bifurcation.mode) {}
+
+Increment BranchSwitchLeg::Predict(int attempt, double theta) const {
+  return {mode_ * (attempt % 2 == 0 ? theta : -theta), 0.0};
+}
+
+bool BranchSwitchLeg::Reversed(const StepPoint& answer, double theta) const {
+  return std::abs(mode_.dot(answer.du)) < 0.5 * theta;
+}
+
+}  // namespace cb

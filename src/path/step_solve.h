@@ -1,0 +1,25 @@
+// One solve of one step, judged: what every solve of the path driver does (a path step, a
+// fixed-load step, a replayed step, a kink (53), a bisection trial at a critical point).
+#pragma once
+
+#include "path/path.h"
+
+namespace cb {
+
+// A step's answer with its verdict (METHOD.md section 7) and the state it reaches.
+struct JudgedStep {
+  StepResult result;
+  Verdict verdict;
+  State state;        // problem.base + the increment: (u + du, r, lambda + dlambda)
+  int n_contact = 0;  // pairs in contact at `state` (CountContacts)
+};
+
+// Solves `problem` from `start` with options.controls and judges the answer to
+// options.tolerance.
+JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
+                         const StartPoint& start, const PathOptions& options);
+
+// Moves `judged` into the attempt's result, verdict, state and n_contact.
+void RecordJudgedStep(JudgedStep judged, StepAttempt* attempt);
+
+}  // namespace cb

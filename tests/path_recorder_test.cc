@@ -1,0 +1,100 @@
+// PathRecorder (path/path_recorder.h) and ReplayPath (path/replay.h) on the two-bar truss
+// snapping onto a floor (a path with a kink).
+#include "path/path_recorder.h"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "formulations/implicit_fb/implicit_fb.h"
+#include "path/replay.h"
+#include "problems/problem.h"
+
+namespace cb {
+namespace {
+
+// Records every accepted attempt beside a PathRecorder.
+class Tee final : public PathObserver {
+ public:
+  void OnAttempt(const StepAttempt& a) override {
+    recorder.OnAttempt(a);
+    if (a.accepted) accepted.push_back(a);
+  }
+  void OnKink(const KinkRecord& k) override { recorder.OnKink(k); }
+  PathRecorder recorder;
+  std::vector<StepAttempt> accepted;
+};
+
+class PathRecorderTest : public ::testing::Test {
+ protected:
+  PathRecorderTest() : p_(MakeProblem("two-bar-obstacle")) {
+    options_.arc_length = 0.02;
+    options_.max_steps = 80;
+    ImplicitFb f;
+    summary_ = TraceArcLengthPath(*p_.model, p_.scales, ZeroState(*p_.model), f, options_, &tee_);
+  }
+
+  Problem p_;
+  PathOptions options_;
+  Tee tee_;
+  PathSummary summary_;
+};
+
+TEST_F(PathRecorderTest, EachAcceptedStepIsRecordedOnce) {
+  ASSERT_EQ(summary_.status, Status::kConverged) << summary_.message;
+  const PathRecorder& r = tee_.recorder;
+  ASSERT_EQ(r.steps.size(), 80u);
+  ASSERT_EQ(tee_.accepted.size(), 80u);
+  EXPECT_EQ(r.kinks.size(), 1u);
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    const StepAttempt& a = tee_.accepted[k];
+    const RecordedStep& s = r.steps[k];
+    EXPECT_EQ(s.state.u, a.state.u);
+    EXPECT_EQ(s.state.lambda, a.state.lambda);
+    EXPECT_EQ(s.increment.du, a.result.point.du);
+    EXPECT_EQ(s.prediction.du, a.predicted_du);
+    EXPECT_EQ(s.prediction.dlambda, a.predicted_dlambda);
+    EXPECT_EQ(s.arc_length, a.arc_length);
+    EXPECT_EQ(s.kind, ConstraintKind::kArcLength);
+    // The columns read the same steps.
+    EXPECT_EQ(&r.states[k], &s.state);
+    EXPECT_EQ(&r.increments[k], &s.increment);
+    EXPECT_EQ(&r.predictions[k], &s.prediction);
+    EXPECT_EQ(r.arc_lengths[k], s.arc_length);
+    EXPECT_EQ(r.kinds[k], s.kind);
+  }
+  EXPECT_EQ(&r.states.back(), &r.steps.back().state);
+}
+
+TEST_F(PathRecorderTest, ACopyViewsItsOwnSteps) {
+  PathRecorder copy = tee_.recorder;
+  ASSERT_EQ(copy.states.size(), copy.steps.size());
+  EXPECT_EQ(&copy.states[0], &copy.steps[0].state);
+  tee_.recorder.steps.clear();
+  EXPECT_TRUE(tee_.recorder.states.empty());
+  EXPECT_EQ(copy.states.size(), 80u);
+  const PathRecorder moved = std::move(copy);
+  EXPECT_EQ(&moved.states[0], &moved.steps[0].state);
+  EXPECT_EQ(moved.kinds.size(), 80u);
+}
+
+// The formulation that traced the path, given the same steps with the same starts, finds the
+// same states.
+TEST_F(PathRecorderTest, ReplayingThePathWithItsOwnFormulationReproducesIt) {
+  ImplicitFb f;
+  Tee replayed;
+  const PathSummary s =
+      ReplayPath(*p_.model, p_.scales, ZeroState(*p_.model), tee_.recorder, f, options_, &replayed);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  ASSERT_EQ(replayed.accepted.size(), tee_.recorder.steps.size());
+  for (std::size_t k = 0; k < replayed.accepted.size(); ++k) {
+    const State& a = replayed.accepted[k].state;
+    const State& b = tee_.recorder.steps[k].state;
+    EXPECT_LE((a.u - b.u).lpNorm<Eigen::Infinity>(), 1e-12) << "step " << k + 1;
+    EXPECT_NEAR(a.lambda, b.lambda, 1e-12) << "step " << k + 1;
+  }
+}
+
+}  // namespace
+}  // namespace cb
