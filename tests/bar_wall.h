@@ -6,7 +6,7 @@
 #include "path/path.h"
 #include "problems/problem.h"
 
-namespace cb::testing {
+namespace cb::fixtures {
 
 struct BarWallClosedForm {
   explicit BarWallClosedForm(const Problem& p)
@@ -29,4 +29,4 @@ struct BarWallClosedForm {
   double ea, gap, length, lambda_c;
 };
 
-}  // namespace cb::testing
+}  // namespace cb::fixtures

@@ -17,13 +17,13 @@
 namespace cb {
 namespace {
 
-using testing::TwoBarOf;
+using fixtures::TwoBarOf;
 
 class CriticalPointsTest : public ::testing::Test {
  protected:
   // The state of the symmetric branch at apex height w.
   State StateAt(const Problem& p, double w) const {
-    const testing::TwoBarClosedForm t = TwoBarOf(p);
+    const fixtures::TwoBarClosedForm t = TwoBarOf(p);
     State s = ZeroState(*p.model);
     s.u[p.control_dof] = w - t.h;
     s.lambda = t.Lambda(w);
@@ -97,7 +97,7 @@ TEST_F(CriticalPointsTest, NoCountAtTheOriginNoModeChange) {
 
 TEST_F(CriticalPointsTest, AStepOverTheBifurcationPointLocatesItAndItsNullVector) {
   const Problem p = MakeProblem("two-bar", {{"height", "3"}, {"apex", "free"}});
-  const testing::TwoBarClosedForm t = TwoBarOf(p);
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
   const double length = std::sqrt(t.b * t.b + t.h * t.h);
   double lo = t.b * std::sqrt(2.0), hi = t.h;  // l^3 - L w^2 changes sign between them
   for (int i = 0; i < 200; ++i) {

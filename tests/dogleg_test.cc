@@ -9,8 +9,8 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::History;
-using ::cb::testing::PowellBadlyScaledSystem;
+using ::cb::fixtures::History;
+using ::cb::fixtures::PowellBadlyScaledSystem;
 
 TEST(DoglegSolverTest, OneFactorisationPerAcceptedStep) {
   PowellBadlyScaledSystem system;

@@ -20,13 +20,13 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::BratuSystem;
-using ::cb::testing::History;
-using ::cb::testing::InfNorm;
-using ::cb::testing::ParamName;
-using ::cb::testing::PowellBadlyScaledSystem;
-using ::cb::testing::Readable;
-using ::cb::testing::RosenbrockSystem;
+using ::cb::fixtures::BratuSystem;
+using ::cb::fixtures::History;
+using ::cb::fixtures::InfNorm;
+using ::cb::fixtures::ParamName;
+using ::cb::fixtures::PowellBadlyScaledSystem;
+using ::cb::fixtures::Readable;
+using ::cb::fixtures::RosenbrockSystem;
 
 // F(x) = A x - b with a nonsymmetric tridiagonal A and b = A x*: one Newton step is exact.
 class LinearTestSystem : public EquationSystem {

@@ -30,7 +30,7 @@ class KinkLocationTest : public ::testing::Test {
   }
 
   Problem p_;
-  testing::BarWallClosedForm bar_;
+  fixtures::BarWallClosedForm bar_;
   ImplicitFb f_;
   PathOptions options_;
 };

@@ -20,7 +20,7 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::ParamName;
+using ::cb::fixtures::ParamName;
 
 // Random nonsymmetric matrix: a dominant-ish diagonal plus random entries within a band, the
 // shape of a finite-element matrix rather than a random graph (whose LU fill is dense).

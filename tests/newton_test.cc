@@ -12,10 +12,10 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::BratuSystem;
-using ::cb::testing::History;
-using ::cb::testing::InfNorm;
-using ::cb::testing::RosenbrockSystem;
+using ::cb::fixtures::BratuSystem;
+using ::cb::fixtures::History;
+using ::cb::fixtures::InfNorm;
+using ::cb::fixtures::RosenbrockSystem;
 
 TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
   RosenbrockSystem rosenbrock;

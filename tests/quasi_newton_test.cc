@@ -9,8 +9,8 @@
 namespace cb {
 namespace {
 
-using ::cb::testing::BratuSystem;
-using ::cb::testing::InfNorm;
+using ::cb::fixtures::BratuSystem;
+using ::cb::fixtures::InfNorm;
 
 TEST(QuasiNewtonSolverTest, UsesFewerJacobiansThanIterations) {
   BratuSystem system(1000, 1.0);

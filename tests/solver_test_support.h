@@ -14,7 +14,7 @@
 #include "solvers/equation_solver.h"
 #include "solvers/equation_system.h"
 
-namespace cb::testing {
+namespace cb::fixtures {
 
 inline double InfNorm(const Vec& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
 
@@ -158,4 +158,4 @@ inline std::string ParamName(const ::testing::TestParamInfo<std::string>& info) 
   return Readable(info.param);
 }
 
-}  // namespace cb::testing
+}  // namespace cb::fixtures

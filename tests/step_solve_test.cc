@@ -27,7 +27,7 @@ class StepSolveTest : public ::testing::Test {
   }
 
   Problem p_;
-  testing::BarWallClosedForm bar_;
+  fixtures::BarWallClosedForm bar_;
 };
 
 TEST_F(StepSolveTest, AFixedLoadStepPastContactReachesTheClosedFormFromItsBase) {
