@@ -319,6 +319,16 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   return options;
 }
 
+// The problem's first step, as Trace takes it: what a formulation is asked to Accept before the
+// problem is run (capability depends on the model and the kind of step, not on the path).
+StepProblem FirstStep(const Problem& problem, const PathOptions& options) {
+  const StepConstraint constraint =
+      problem.loading == LoadingKind::kFixedLoad
+          ? StepConstraint::FixedLoad(problem.load)
+          : StepConstraint::ArcLength(options.arc_length, options.lambda_weight);
+  return {problem.model.get(), ZeroState(*problem.model), constraint, problem.scales};
+}
+
 // Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
 PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
                   PathObserver* observer, const State* guess = nullptr) {
@@ -407,10 +417,9 @@ int Run(const std::vector<std::string>& args) {
   }
   PrepareOutput(a.out);
   const PathOptions options = MakePathOptions(a, problem);
-  if (problem.loading == LoadingKind::kArcLength &&
-      !formulation->Supports(ConstraintKind::kArcLength)) {
-    throw UsageError(formulation->name() + " cannot express an arc-length step; problem '" +
-                     problem.name + "' is traced by arc length");
+  std::string refusal;
+  if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
+    throw UsageError(refusal + " (problem '" + problem.name + "')");
   }
 
   // --start near: the reference solution, perturbed by near_offset (relative, per entry, with
@@ -486,9 +495,7 @@ int Compare(const std::vector<std::string>& args) {
   }
   PrepareOutput(a.out);
   PathOptions options = MakePathOptions(a, problem);
-  const ConstraintKind kind = problem.loading == LoadingKind::kFixedLoad
-                                  ? ConstraintKind::kFixedLoad
-                                  : ConstraintKind::kArcLength;
+  const StepProblem first = FirstStep(problem, options);
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
   CsvWriter runs(a.out + "/runs.csv", {"problem", "formulation", "solver", "start", "mode",
@@ -528,9 +535,8 @@ int Compare(const std::vector<std::string>& args) {
       CsvWriter::Row row;
       row << problem.name << formulation->name() << formulation->solver() << ToString(start)
           << a.mode << formulation->settings();
-      if (!formulation->Supports(kind)) {
-        const std::string why = formulation->name() + " cannot express the step constraint '" +
-                                std::string(ToString(kind)) + "'";
+      std::string why;
+      if (!formulation->Accepts(first, &why)) {
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
         row << "skipped" << 0 << 0 << why << a.time_limit << a.tolerance;
         runs.Write(row);
@@ -543,21 +549,10 @@ int Compare(const std::vector<std::string>& args) {
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
-      PathSummary s;
-      try {
-        s = a.mode == "replay" ? ReplayPath(*problem.model, problem.scales,
-                                            ZeroState(*problem.model), path, *formulation,
-                                            run_options, &recorder)
-                               : Trace(problem, *formulation, run_options, &recorder);
-      } catch (const std::invalid_argument& e) {
-        // A formulation refusing the problem (dense SLSQP above its size limit) is recorded as
-        // skipped with its reason; the other formulations still run.
-        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), e.what());
-        row << "skipped" << recorder.attempts() << recorder.accepted() << e.what() << a.time_limit
-            << a.tolerance;
-        runs.Write(row);
-        continue;
-      }
+      const PathSummary s =
+          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
+                                          path, *formulation, run_options, &recorder)
+                             : Trace(problem, *formulation, run_options, &recorder);
       row << ToString(s.status) << recorder.attempts() << recorder.accepted() << s.message
           << a.time_limit << a.tolerance;
       runs.Write(row);
