@@ -10,16 +10,18 @@ namespace {
 bool Positive(double v) { return v > 0.0 && std::isfinite(v); }
 bool NonNegative(double v) { return v >= 0.0 && std::isfinite(v); }
 
+// `ok`, with *why = `reason` when not: the checks below chain these with &&, so the first
+// failing one gives the reason.
+bool Require(bool ok, const char* reason, std::string* why) {
+  if (!ok) *why = reason;
+  return ok;
+}
+
 // NLopt's stopping tests, which every formulation sets (NloptRun::SetStops).
 bool AreValidStops(double ftol_rel, double xtol_rel, int maxeval, std::string* why) {
-  if (!NonNegative(ftol_rel) || !NonNegative(xtol_rel)) {
-    *why = "ftol_rel and xtol_rel must be >= 0";
-  } else if (maxeval < 1) {
-    *why = "maxeval must be >= 1";
-  } else {
-    return true;
-  }
-  return false;
+  return Require(NonNegative(ftol_rel) && NonNegative(xtol_rel),
+                 "ftol_rel and xtol_rel must be >= 0", why) &&
+         Require(maxeval >= 1, "maxeval must be >= 1", why);
 }
 
 template <class Options>
@@ -31,58 +33,31 @@ void Check(const std::string& name, const Options& options) {
 }  // namespace
 
 bool NloptMeritOptions::IsValid(std::string* why) const {
-  if (algorithm != "lbfgs" && algorithm != "tnewton") {
-    *why = "algorithm must be lbfgs or tnewton";
-  } else if (!IsValidSmoothing(eta, gamma_tol, rho_min, why)) {
-    return false;
-  } else if (!Positive(residual_tol)) {
-    *why = "residual_tol must be positive";
-  } else if (!Positive(merit_scale)) {
-    *why = "merit_scale must be positive";
-  } else if (!AreValidStops(ftol_rel, xtol_rel, maxeval, why)) {
-    return false;
-  } else if (memory < 0) {
-    *why = "memory must be >= 0";
-  } else {
-    return true;
-  }
-  return false;
+  return Require(algorithm == "lbfgs" || algorithm == "tnewton",
+                 "algorithm must be lbfgs or tnewton", why) &&
+         IsValidSmoothing(eta, gamma_tol, rho_min, why) &&
+         Require(Positive(residual_tol), "residual_tol must be positive", why) &&
+         Require(Positive(merit_scale), "merit_scale must be positive", why) &&
+         AreValidStops(ftol_rel, xtol_rel, maxeval, why) &&
+         Require(memory >= 0, "memory must be >= 0", why);
 }
 
 bool NloptEnergyOptions::IsValid(std::string* why) const {
-  if (algorithm != "mma" && algorithm != "ccsaq" && algorithm != "slsqp") {
-    *why = "algorithm must be mma, ccsaq or slsqp";
-  } else if (!AreValidStops(ftol_rel, xtol_rel, maxeval, why)) {
-    return false;
-  } else if (!NonNegative(constraint_tol)) {
-    *why = "constraint_tol must be >= 0";
-  } else if (!NonNegative(active_tol)) {
-    *why = "active_tol must be >= 0";
-  } else if (max_dense_size < 1) {
-    *why = "max_dense_size must be >= 1";
-  } else if (!Positive(max_gradient_entries)) {
-    *why = "max_gradient_entries must be positive";
-  } else {
-    return true;
-  }
-  return false;
+  return Require(algorithm == "mma" || algorithm == "ccsaq" || algorithm == "slsqp",
+                 "algorithm must be mma, ccsaq or slsqp", why) &&
+         AreValidStops(ftol_rel, xtol_rel, maxeval, why) &&
+         Require(NonNegative(constraint_tol), "constraint_tol must be >= 0", why) &&
+         Require(NonNegative(active_tol), "active_tol must be >= 0", why) &&
+         Require(max_dense_size >= 1, "max_dense_size must be >= 1", why) &&
+         Require(Positive(max_gradient_entries), "max_gradient_entries must be positive", why);
 }
 
 bool NloptMpccOptions::IsValid(std::string* why) const {
-  if (!Positive(weight)) {
-    *why = "weight must be positive";
-  } else if (!Positive(bound_push)) {
-    *why = "bound_push must be positive";
-  } else if (!Positive(residual_tol)) {
-    *why = "residual_tol must be positive";
-  } else if (!AreValidStops(ftol_rel, xtol_rel, maxeval, why)) {
-    return false;
-  } else if (max_dense_size < 1) {
-    *why = "max_dense_size must be >= 1";
-  } else {
-    return true;
-  }
-  return false;
+  return Require(Positive(weight), "weight must be positive", why) &&
+         Require(Positive(bound_push), "bound_push must be positive", why) &&
+         Require(Positive(residual_tol), "residual_tol must be positive", why) &&
+         AreValidStops(ftol_rel, xtol_rel, maxeval, why) &&
+         Require(max_dense_size >= 1, "max_dense_size must be >= 1", why);
 }
 
 NloptMeritOptions ReadNloptMeritOptions(const FormulationConfig& config) {
