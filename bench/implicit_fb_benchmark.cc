@@ -207,7 +207,7 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
   // The Jacobian at the answer.
   ImplicitFbStart at = MakeImplicitFbStart(step, start, formulation.options());
   ImplicitFbSystem system(step, EtaEquation{formulation.options().eta, at.gamma});
-  const ImplicitFbLayout& l = system.layout();
+  const StepEquationLayout& l = system.layout();
   Vec x(l.size());
   x << result.point.du, result.point.g / step.scales.length, result.point.r / step.scales.force,
       result.point.dlambda, 0.0;
@@ -264,8 +264,7 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
 
 void IterationOverFactorizationBlock(benchmark::State& state, const std::string& linear_solver) {
   const Problem p = MakeProblem("block", {{"n", std::to_string(state.range(0))}});
-  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
-                   p.scales};
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load), p.scales};
   StartPoint cold;
   cold.kind = StartKind::kCold;
   IterationOverFactorization(state, step, cold, linear_solver);
@@ -293,8 +292,8 @@ void RegisterAll() {
   // The default first, then the full-system LU for comparison (n = 400 only with the default:
   // KLU needs minutes there).
   for (const std::string solver : {"cholmod", "klu"}) {
-    auto* b = benchmark::RegisterBenchmark(("BM_BlockColdSolve/" + solver).c_str(),
-                                           BlockColdSolve, solver);
+    auto* b = benchmark::RegisterBenchmark(("BM_BlockColdSolve/" + solver).c_str(), BlockColdSolve,
+                                           solver);
     for (int n : {25, 50, 100, 200}) b->Arg(n);
     if (solver == "cholmod") b->Arg(400);
     b->Unit(benchmark::kMillisecond);
@@ -317,9 +316,9 @@ void RegisterAll() {
   for (const std::string solver : {"cholmod", "klu"}) {
     // n = 200 with klu would repeat 15 LU factorisations of 2 s each: the LU comparator is
     // measured by the cholmod case anyway.
-    auto* block = benchmark::RegisterBenchmark(
-        ("BM_IterationOverFactorizationBlock/" + solver).c_str(), IterationOverFactorizationBlock,
-        solver);
+    auto* block =
+        benchmark::RegisterBenchmark(("BM_IterationOverFactorizationBlock/" + solver).c_str(),
+                                     IterationOverFactorizationBlock, solver);
     block->Arg(50)->Unit(benchmark::kMillisecond);
     if (solver == "cholmod") block->Arg(200);
     benchmark::RegisterBenchmark(("BM_IterationOverFactorizationArchCurved/" + solver).c_str(),

@@ -9,27 +9,8 @@
 
 namespace cb {
 
-namespace {
-
-std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config) {
-  if (config.eta < 1 || config.eta > 4) {
-    throw std::invalid_argument("eta must be 1, 2, 3 or 4 (got " + std::to_string(config.eta) +
-                                ")");
-  }
-  OptionReader reader("implicit-fb", config.options);
-  ImplicitFbOptions options;
-  options.eta = static_cast<EtaCase>(config.eta);
-  options.solver = config.solver;
-  options.solver_options = config.solver_options;
-  options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
-  options.rho_min = reader.GetReal("rho_min", options.rho_min);
-  reader.Finish();
-  return std::make_unique<ImplicitFb>(options);
-}
-
-}  // namespace
-
 const std::vector<FormulationInfo>& FormulationRegistry() {
+  // One line per formulation: name, description, whether its backend was built, factory.
   static const std::vector<FormulationInfo> registry = {
       {"implicit-fb",
        "implicit smoothed Fischer-Burmeister equations (29)-(33), rho an unknown; eta cases 1-4",

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "formulations/config.h"
+#include "formulations/common/config.h"
 #include "step/formulation.h"
 
 namespace cb {

@@ -11,9 +11,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build-tidy}"
 
-"$here/scripts/install_packages.sh" cmake ninja-build pkg-config clang clang-tidy cppcheck \
-  libeigen3-dev nlohmann-json3-dev libsuitesparse-dev coinor-libipopt-dev libnlopt-cxx-dev \
-  libgtest-dev libbenchmark-dev
+"$here/scripts/install_packages.sh" static  # scripts/packages.txt
 
 # Configuring is enough: compile_commands.json is all clang-tidy needs (no generated sources).
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
@@ -45,7 +43,7 @@ if ! cppcheck --quiet --enable=warning,performance,portability --error-exitcode=
     --suppress=missingIncludeSystem --suppress=unmatchedSuppression \
     --suppress=useInitializationList \
     -I "$here/src" -I "$here" -I "$here/bench" \
-    -DCONTACTBENCH_HAVE_IPOPT=1 -DCONTACTBENCH_HAVE_NLOPT=1 -DCONTACTBENCH_HAVE_SUITESPARSE=1 \
+    -DCONTACTBENCH_HAVE_SUITESPARSE=1 \
     --template='{file}:{line}: {severity} ({id}): {message}' \
     "${sources[@]/#/$here/}" 2> "$build/cppcheck.log"; then
   status=1

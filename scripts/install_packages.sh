@@ -1,9 +1,32 @@
 #!/usr/bin/env bash
-# Installs the Debian packages given that are not installed yet (as scripts/setup.sh does for
-# the project's own). Usage: scripts/install_packages.sh PACKAGE...
+# Installs the Debian packages of scripts/packages.txt that a job needs and that are not
+# installed yet: the untagged lines and those tagged with JOB.
+# Usage: scripts/install_packages.sh JOB   (build, sanitize or static)
 set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs=(build sanitize static)
+job="${1:-}"
+if [[ " ${jobs[*]} " != *" $job "* ]]; then
+  echo "install_packages: usage: $0 JOB (one of: ${jobs[*]})" >&2
+  exit 2
+fi
+
+packages=()
+while read -r -a words; do
+  ((${#words[@]})) || continue
+  for tag in "${words[@]:1}"; do
+    if [[ " ${jobs[*]} " != *" $tag "* ]]; then
+      echo "install_packages: scripts/packages.txt: unknown job '$tag' for ${words[0]}" >&2
+      exit 2
+    fi
+  done
+  if ((${#words[@]} == 1)) || [[ " ${words[*]:1} " == *" $job "* ]]; then
+    packages+=("${words[0]}")
+  fi
+done < <(sed -e 's/#.*//' "$here/scripts/packages.txt")
+
 missing=()
-for p in "$@"; do
+for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 ((${#missing[@]})) || exit 0

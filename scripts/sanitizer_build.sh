@@ -12,9 +12,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$1"
 shift
 
-"$here/scripts/install_packages.sh" cmake ninja-build pkg-config clang libclang-rt-14-dev \
-  libeigen3-dev coinor-libipopt-dev libnlopt-cxx-dev libsuitesparse-dev libgtest-dev \
-  nlohmann-json3-dev
+"$here/scripts/install_packages.sh" sanitize  # scripts/packages.txt
 
 flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=undefined"
 flags+=" -fno-omit-frame-pointer"

@@ -109,7 +109,6 @@ TEST(FailureTest, NanFromTheModelIsAFailedStepWithItsReasonInEveryFormulation) {
   for (const std::string& name : AvailableFormulations()) {
     SCOPED_TRACE(name);
     auto f = MakeFormulation(name, {});
-    ASSERT_TRUE(f->Supports(ConstraintKind::kFixedLoad));
     StepResult r;
     ASSERT_NO_THROW(r = FixedLoadStep(*f, model, p.scales));
     EXPECT_EQ(r.status, Status::kFailed) << r.message;

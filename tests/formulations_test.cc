@@ -4,11 +4,10 @@
 // unique (Drake's solver tests; Ceres' TEST_P with readable names).
 //
 // Skipped, with the reason: formulations not built into this binary, factories that say "not
-// written yet" (std::logic_error), constraint kinds a formulation does not Support(), and the
-// failures listed in kKnownLimitations (which still run; they are reported as skipped with
-// their findings while they fail, and fail once they succeed, so that the list stays true).
-// Energy formulations (name containing "energy") on a model without an energy must refuse the
-// step with std::invalid_argument, which is asserted instead.
+// written yet" (std::logic_error), fixtures whose step a formulation does not Accept (Solve must
+// then refuse it with the same reason, which is asserted first), and the failures listed in
+// kKnownLimitations (which still run; they are reported as skipped with their findings while
+// they fail, and fail once they succeed, so that the list stays true).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -76,7 +75,9 @@ PathSummary TracePath(const Fixture& f, Formulation& formulation, Collector* c) 
   PathOptions o;
   o.arc_length = f.theta;
   o.max_steps = f.steps;
-  o.locate_kinks = formulation.Supports(ConstraintKind::kKink);
+  // Kinks (53) are located when the formulation takes a kink step.
+  const StepProblem kink{f.problem.model.get(), f.base, StepConstraint::Kink(0), f.problem.scales};
+  o.locate_kinks = f.problem.model->num_pairs() > 0 && formulation.Accepts(kink);
   return TraceArcLengthPath(*f.problem.model, f.problem.scales, f.base, formulation, o, c);
 }
 
@@ -169,20 +170,21 @@ TEST_P(FormulationsTest, SolvesTheFixture) {
   }
   ASSERT_NE(formulation, nullptr);
   const Fixture& f = FindFixture(c.fixture);
-  const ConstraintKind kind = f.path ? ConstraintKind::kArcLength : f.constraint.kind;
-  if (!formulation->Supports(kind)) {
-    GTEST_SKIP() << c.formulation << " cannot express the step constraint " << ToString(kind);
-  }
   const StepProblem step = f.Step();
-  if (!f.problem.model->has_energy() && c.formulation.find("energy") != std::string::npos) {
+  // The first step the formulation is given: the fixture's step, or the path's first one.
+  const StepProblem first = f.path
+                                ? StepProblem{f.problem.model.get(), f.base,
+                                              StepConstraint::ArcLength(f.theta), f.problem.scales}
+                                : step;
+  std::string why;
+  if (!formulation->Accepts(first, &why)) {
     try {
-      formulation->Solve(step, StartFor(f, c.start));
-      ADD_FAILURE() << c.formulation << " accepted a model without an energy";
+      formulation->Solve(first, StartFor(f, c.start));
+      ADD_FAILURE() << c.formulation << " solved a step that Accepts refuses (" << why << ")";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("energy"), std::string::npos)
-          << "the message should say that the model has no energy: " << e.what();
+      EXPECT_EQ(e.what(), why) << "Solve should refuse with Accepts' reason";
     }
-    return;
+    GTEST_SKIP() << why;
   }
 
   Findings findings;

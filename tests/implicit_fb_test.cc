@@ -77,7 +77,7 @@ TEST(ImplicitFbTest, ColdStartRhoMatchesTheReport) {
     ImplicitFbOptions o;
     o.eta = static_cast<EtaCase>(eta);
     const ImplicitFbStart s = MakeImplicitFbStart(step, cold, o);
-    const ImplicitFbLayout l{p.model->num_dofs(), p.model->num_pairs()};
+    const StepEquationLayout l{p.model->num_dofs(), p.model->num_pairs(), true};
     EXPECT_NEAR(s.x[l.rho()], expected[eta - 1], 1e-12) << "eta case " << eta;
     EXPECT_DOUBLE_EQ(s.gamma, 1.0);
   }
@@ -91,8 +91,7 @@ TEST(ImplicitFbTest, ColdStartRhoMatchesTheReport) {
 void ExpectWarmStartSatisfiesRows(double reaction_sign) {
   // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
   // dofs).
-  const Problem p =
-      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
+  const Problem p = MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
   ASSERT_GE(d, 1000);
@@ -120,7 +119,7 @@ void ExpectWarmStartSatisfiesRows(double reaction_sign) {
   ImplicitFbSystem system(step, EtaEquation{o.eta, s.gamma});
   Vec f;
   ASSERT_TRUE(system.Residual(s.x, &f));
-  const ImplicitFbLayout& l = system.layout();
+  const StepEquationLayout& l = system.layout();
   EXPECT_LT(f.segment(l.d, nc).lpNorm<Eigen::Infinity>(), 1e-13);  // (30)
   EXPECT_LT(std::abs(f[l.d + 2 * nc]), 1e-13);                     // (32)
   EXPECT_LT(std::abs(f[l.d + 2 * nc + 1]), 1e-13);                 // (33)
@@ -149,8 +148,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   const JacobianCase c = GetParam();
   // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
   // dofs).
-  const Problem p =
-      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
+  const Problem p = MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
   ASSERT_GE(d, 1000);
@@ -163,7 +161,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   const StepConstraint constraint = fixtures::ConstraintOf(c.kind, nc);
   StepProblem step{p.model.get(), base, constraint, {0.1, 2.0}};
   ImplicitFbSystem system(step, EtaEquation{static_cast<EtaCase>(c.eta), 0.8});
-  const ImplicitFbLayout& l = system.layout();
+  const StepEquationLayout& l = system.layout();
   Vec x(l.size());
   for (int i = 0; i < l.size(); ++i) x[i] = unit(rng);
   x.segment(0, d) *= 0.05;
@@ -338,8 +336,7 @@ TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
   // the same.
   // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact
   // dofs).
-  const Problem p =
-      MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
+  const Problem p = MakeProblem("arch-curved", {{"upper_nodes", "300"}, {"area_step", "0.0001"}});
   const int d = p.model->num_dofs();
   const int nc = p.model->num_pairs();
   ASSERT_GE(d, 1000);
@@ -357,8 +354,7 @@ TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
     warm.du = Vec::Constant(d, 0.001);
     warm.dlambda = 0.05;
     warm.r = base.r;
-    ExpectCondensedStepsMatchFullSteps(step, warm, EtaCase::kCase1,
-                                       kind != ConstraintKind::kKink);
+    ExpectCondensedStepsMatchFullSteps(step, warm, EtaCase::kCase1, kind != ConstraintKind::kKink);
   }
 }
 #endif

@@ -213,18 +213,26 @@ std::unique_ptr<Formulation> Make(const std::string& name,
 #define SKIP_WITHOUT_IPOPT() \
   if (!IpoptAvailable()) GTEST_SKIP() << "built without Ipopt"
 
-TEST(IpoptTest, FactoriesReportAvailability) {
-  EXPECT_TRUE(IpoptAvailable());  // the suite is configured with Ipopt (CMake finds it)
+TEST(IpoptTest, AvailableExactlyWhenBuiltWithIpopt) {
+#ifdef CONTACTBENCH_HAVE_IPOPT
+  EXPECT_TRUE(IpoptAvailable());
+#else
+  EXPECT_FALSE(IpoptAvailable());
+  EXPECT_THROW(Make("ipopt-mpcc"), std::invalid_argument);
+#endif
 }
 
-TEST(IpoptTest, SupportsOnlyWhatEachNlpCanExpress) {
+TEST(IpoptTest, AcceptsOnlyWhatEachNlpCanExpress) {
   SKIP_WITHOUT_IPOPT();
   auto energy = Make("ipopt-energy");
   auto mpcc = Make("ipopt-mpcc");
+  const Problem bar = MakeProblem("bar-wall");
   for (ConstraintKind k : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
                            ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
-    EXPECT_EQ(energy->Supports(k), k == ConstraintKind::kFixedLoad) << ToString(k);
-    EXPECT_TRUE(mpcc->Supports(k)) << ToString(k);
+    const StepProblem step{bar.model.get(), ZeroState(*bar.model),
+                           fixtures::ConstraintOf(k, bar.model->num_pairs()), bar.scales};
+    EXPECT_EQ(energy->Accepts(step), k == ConstraintKind::kFixedLoad) << ToString(k);
+    EXPECT_TRUE(mpcc->Accepts(step)) << ToString(k);
   }
   EXPECT_EQ(energy->name(), "ipopt-energy");
   EXPECT_EQ(mpcc->name(), "ipopt-mpcc");

@@ -1,6 +1,6 @@
 // The NLopt formulations (formulations/nlopt): derivatives of every objective and constraint
 // against finite differences, solves judged by the verdict, the SLSQP size refusal, exceptions
-// thrown inside NLopt's callbacks, the controls, options and Supports().
+// thrown inside NLopt's callbacks, the controls, options and Accepts().
 #include "formulations/nlopt/nlopt.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +15,7 @@
 
 #include "fd_check.h"
 #include "fixtures.h"
+#include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/nlopt/nlopt_problems.h"
 #include "path/path.h"
 #include "problems/problem.h"
@@ -156,18 +157,21 @@ TEST(NloptDerivativeTest, MpccObjectiveAndEqualitiesMatchFiniteDifferences) {
   }
 }
 
-// --- options, Supports, availability ---------------------------------------------------------
+// --- options, Accepts, availability ----------------------------------------------------------
 
-TEST(NloptTest, IsAvailableAndSupportsWhatItCanExpress) {
+TEST(NloptTest, IsAvailableAndAcceptsWhatItCanExpress) {
   SKIP_WITHOUT_NLOPT();
   const FormulationConfig config;
   const auto merit = MakeNloptMerit(config);
   const auto energy = MakeNloptEnergy(config);
   const auto mpcc = MakeNloptMpcc(config);
+  const Problem bar = MakeProblem("bar-wall");
   for (ConstraintKind kind : kAllKinds) {
-    EXPECT_TRUE(merit->Supports(kind));
-    EXPECT_TRUE(mpcc->Supports(kind));
-    EXPECT_EQ(energy->Supports(kind), kind == ConstraintKind::kFixedLoad);
+    const StepProblem step{bar.model.get(), ZeroState(*bar.model),
+                           fixtures::ConstraintOf(kind, bar.model->num_pairs()), bar.scales};
+    EXPECT_TRUE(merit->Accepts(step));
+    EXPECT_TRUE(mpcc->Accepts(step));
+    EXPECT_EQ(energy->Accepts(step), kind == ConstraintKind::kFixedLoad);
   }
   EXPECT_EQ(merit->name(), "nlopt-merit");
   EXPECT_EQ(energy->name(), "nlopt-energy");

@@ -50,6 +50,16 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   return options;
 }
 
+// The problem's first step, as Trace takes it: what a formulation is asked to Accept before the
+// problem is run (capability depends on the model and the kind of step, not on the path).
+StepProblem FirstStep(const Problem& problem, const PathOptions& options) {
+  const StepConstraint constraint =
+      problem.loading == LoadingKind::kFixedLoad
+          ? StepConstraint::FixedLoad(problem.load)
+          : StepConstraint::ArcLength(options.arc_length, options.lambda_weight);
+  return {problem.model.get(), ZeroState(*problem.model), constraint, problem.scales};
+}
+
 // Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
 PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
                   PathObserver* observer, const State* guess = nullptr) {
@@ -120,10 +130,9 @@ int Run(const RunArguments& a) {
   }
   PrepareOutput(a.out);
   const PathOptions options = MakePathOptions(a, problem);
-  if (problem.loading == LoadingKind::kArcLength &&
-      !formulation->Supports(ConstraintKind::kArcLength)) {
-    throw UsageError(formulation->name() + " cannot express an arc-length step; problem '" +
-                     problem.name + "' is traced by arc length");
+  std::string refusal;
+  if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
+    throw UsageError(refusal + " (problem '" + problem.name + "')");
   }
 
   // --start near: the reference formulation's solution, perturbed (near_start.h).
@@ -180,9 +189,7 @@ int Compare(const RunArguments& a) {
   }
   PrepareOutput(a.out);
   PathOptions options = MakePathOptions(a, problem);
-  const ConstraintKind kind = problem.loading == LoadingKind::kFixedLoad
-                                  ? ConstraintKind::kFixedLoad
-                                  : ConstraintKind::kArcLength;
+  const StepProblem first = FirstStep(problem, options);
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
   RecordWriter<RunOutcomeRow> runs(a.out, RunsSchema());
@@ -220,9 +227,8 @@ int Compare(const RunArguments& a) {
       const RunLabel label{problem.name,          formulation->name(),
                            formulation->solver(), formulation->settings(),
                            ToString(start),       a.mode};
-      if (!formulation->Supports(kind)) {
-        const std::string why = formulation->name() + " cannot express the step constraint '" +
-                                std::string(ToString(kind)) + "'";
+      std::string why;
+      if (!formulation->Accepts(first, &why)) {
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
         runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
         continue;
@@ -232,20 +238,10 @@ int Compare(const RunArguments& a) {
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
-      PathSummary s;
-      try {
-        s = a.mode == "replay"
-                ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model), path,
-                             *formulation, run_options, &recorder)
-                : Trace(problem, *formulation, run_options, &recorder);
-      } catch (const std::invalid_argument& e) {
-        // A formulation refusing the problem (dense SLSQP above its size limit) is recorded as
-        // skipped with its reason; the other formulations still run.
-        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), e.what());
-        runs.Write({label, "skipped", recorder.attempts(), recorder.accepted(), e.what(),
-                    a.time_limit, a.tolerance});
-        continue;
-      }
+      const PathSummary s =
+          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
+                                          path, *formulation, run_options, &recorder)
+                             : Trace(problem, *formulation, run_options, &recorder);
       runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
                   a.time_limit, a.tolerance});
       if (s.status == Status::kStoppedByCaller) return kExitInterrupted;

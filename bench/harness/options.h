@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "formulations/config.h"
+#include "formulations/common/config.h"
 #include "path/path.h"
 
 namespace cb::harness {

@@ -1,109 +1,20 @@
 #include "formulations/implicit_fb/implicit_fb.h"
 
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 namespace cb {
 
-// --- eta equation (32) ---------------------------------------------------------------------
-
-double EtaEquation::Value(double m, double rho) const {
-  switch (eta) {
-    case EtaCase::kCase1:
-      return -gamma * gamma * m - std::expm1(gamma * rho);
-    case EtaCase::kCase2:
-      return -m - (rho + rho * rho * rho);
-    case EtaCase::kCase3:
-      return -m - 2.0 * rho * rho;
-    case EtaCase::kNonsmooth:
-      return rho;
-  }
-  return 0.0;
-}
-
-double EtaEquation::DerivativeMean(double /*rho*/) const {
-  switch (eta) {
-    case EtaCase::kCase1:
-      return -gamma * gamma;
-    case EtaCase::kCase2:
-    case EtaCase::kCase3:
-      return -1.0;
-    case EtaCase::kNonsmooth:
-      return 0.0;
-  }
-  return 0.0;
-}
-
-double EtaEquation::DerivativeRho(double rho) const {
-  switch (eta) {
-    case EtaCase::kCase1:
-      return -gamma * std::exp(gamma * rho);
-    case EtaCase::kCase2:
-      return -(1.0 + 3.0 * rho * rho);
-    case EtaCase::kCase3:
-      return -4.0 * rho;
-    case EtaCase::kNonsmooth:
-      return 1.0;
-  }
-  return 0.0;
-}
-
-double EtaEquation::CompatibleRho(double m) const {
-  switch (eta) {
-    case EtaCase::kCase1: {
-      // (43) with gamma^2, consistent with (32): exp(gamma rho) = 1 - gamma^2 m.
-      const double argument = 1.0 - gamma * gamma * m;
-      if (!(argument > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-      return std::log1p(-gamma * gamma * m) / gamma;
-    }
-    case EtaCase::kCase2: {
-      // rho^3 + rho - q = 0 has exactly one real root (the left side is increasing): Cardano,
-      // polished by Newton steps against cancellation.
-      const double q = -m;
-      const double s = std::sqrt(0.25 * q * q + 1.0 / 27.0);
-      double rho = std::cbrt(0.5 * q + s) + std::cbrt(0.5 * q - s);
-      for (int i = 0; i < 3; ++i) rho -= (rho * rho * rho + rho - q) / (3.0 * rho * rho + 1.0);
-      return rho;
-    }
-    case EtaCase::kCase3:
-      if (m > 0.0) return std::numeric_limits<double>::quiet_NaN();
-      return std::sqrt(-0.5 * m);
-    case EtaCase::kNonsmooth:
-      return 0.0;
-  }
-  return 0.0;
-}
-
-double WarmStartGamma(double m, double gamma_tol) {
-  // (37): g0^T r0 < nc (1 - gamma_), divided by nc.
-  if (m < 1.0 - gamma_tol) return 1.0;
-  return std::sqrt((1.0 - gamma_tol) / m);
-}
-
 bool ImplicitFbOptions::IsValid(std::string* why) const {
-  const int e = static_cast<int>(eta);
-  if (e < 1 || e > 4) {
-    *why = "eta must be 1, 2, 3 or 4";
-    return false;
-  }
-  if (!(gamma_tol > 0.0 && gamma_tol < 1.0)) {
-    *why = "gamma_tol must be in (0, 1)";
-    return false;
-  }
-  if (!(rho_min > 0.0) || !std::isfinite(rho_min)) {
-    *why = "rho_min must be positive";
-    return false;
-  }
-  return solver_options.IsValid(why);
+  return IsValidSmoothing(eta, gamma_tol, rho_min, why) && solver_options.IsValid(why);
 }
 
 // --- start points (METHOD.md section 4) ----------------------------------------------------
 
 ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& start,
                                     const ImplicitFbOptions& options) {
-  const ImplicitFbLayout layout{step.num_dofs(), step.num_pairs()};
+  const StepEquationLayout layout{step.num_dofs(), step.num_pairs(), /*has_rho=*/true};
   ImplicitFbStart out;
   // (38)-(41) warm, or the cold start of section 5.1: shared with the nonsmooth formulations.
   out.x = MakeStepEquationStart(step, start, layout.size());
@@ -121,60 +32,6 @@ ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& s
   // satisfies (32) exactly.
   out.x[layout.rho()] = std::abs(out.rho_star) > options.rho_min ? out.rho_star : options.rho_min;
   return out;
-}
-
-// --- the system ------------------------------------------------------------------------------
-
-ImplicitFbSystem::ImplicitFbSystem(const StepProblem& step, EtaEquation eta,
-                                   std::shared_ptr<PatternCache> cache)
-    : StepEquationSystem(step, /*has_rho=*/true, std::move(cache)),
-      eta_(eta),
-      layout_{step.num_dofs(), step.num_pairs()} {
-  if (layout_.nc == 0 && eta_.eta != EtaCase::kNonsmooth) {
-    // With no contact pairs (32) has no complementarity term; rho = 0 is its only sensible
-    // value, which the nonsmooth row F4 = rho states.
-    eta_.eta = EtaCase::kNonsmooth;
-  }
-}
-
-ImplicitFbSystem::~ImplicitFbSystem() = default;
-
-double ImplicitFbSystem::Complementarity(double a, double b, double rho) const {
-  return SmoothedFischerBurmeister(a, b, rho);  // (31)
-}
-
-void ImplicitFbSystem::ComplementarityElement(double a, double b, double rho, double* d_a,
-                                              double* d_b, double* d_rho) const {
-  // d/da = a/s - 1, d/db = b/s - 1, d/drho = 2 rho / s; at s = 0 (only with rho = 0 at
-  // a = b = 0) the element of the nonsmooth FB function (FischerBurmeisterElement).
-  FischerBurmeisterElement(a, b, rho, d_a, d_b, d_rho);
-}
-
-double ImplicitFbSystem::ExtraRow(const Vec& x) const {
-  const ImplicitFbLayout& l = layout_;
-  const double m = l.nc > 0 ? x.segment(l.g(), l.nc).dot(x.segment(l.r(), l.nc)) / l.nc : 0.0;
-  return eta_.Value(m, x[l.rho()]);  // (32) / nc
-}
-
-void ImplicitFbSystem::AppendExtraRowEntries(std::vector<ScatterPattern::Entry>* e) const {
-  const ImplicitFbLayout& l = layout_;
-  const int row4 = l.d + 2 * l.nc;
-  for (int p = 0; p < l.nc; ++p) {
-    e->emplace_back(row4, l.g() + p);
-    e->emplace_back(row4, l.r() + p);
-  }
-  e->emplace_back(row4, l.rho());
-}
-
-void ImplicitFbSystem::FillExtraRow(const Vec& x, Cursor* cursor) const {
-  const ImplicitFbLayout& l = layout_;
-  const double rho = x[l.rho()];
-  const double dm = l.nc > 0 ? eta_.DerivativeMean(rho) / l.nc : 0.0;
-  for (int p = 0; p < l.nc; ++p) {
-    cursor->Add(dm * x[l.r() + p]);  // dF4/dg^ = eta'_m r^ / nc
-    cursor->Add(dm * x[l.g() + p]);  // dF4/dr^ = eta'_m g^ / nc
-  }
-  cursor->Add(eta_.DerivativeRho(rho));
 }
 
 // --- the formulation ---------------------------------------------------------------------------
@@ -201,13 +58,27 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
                          const SolveControls& controls, StepResult* result) {
   const ImplicitFbStart initial = MakeImplicitFbStart(step, start, options_);
   ImplicitFbSystem system(step, EtaEquation{options_.eta, initial.gamma}, cache_);
-  const ImplicitFbLayout& l = system.layout();
+  const StepEquationLayout& l = system.layout();
   Vec x = initial.x;
 
   RunStepEquationSolver(*solver_, system, &x, controls, result);
   result->details["gamma"] = std::to_string(initial.gamma);
   result->details["rho0"] = std::to_string(initial.x[l.rho()]);
   result->details["rho"] = std::to_string(x[l.rho()]);
+}
+
+// --- registry factory --------------------------------------------------------------------------
+
+std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config) {
+  OptionReader reader("implicit-fb", config.options);
+  ImplicitFbOptions options;
+  options.eta = static_cast<EtaCase>(config.eta);  // checked by ImplicitFbOptions::IsValid
+  options.solver = config.solver;
+  options.solver_options = config.solver_options;
+  options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
+  options.rho_min = reader.GetReal("rho_min", options.rho_min);
+  reader.Finish();
+  return std::make_unique<ImplicitFb>(options);
 }
 
 }  // namespace cb

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "formulations/common/energy_step.h"
 
 namespace cb {
 
@@ -56,16 +59,8 @@ bool AllFinite(const Vec& v) { return v.allFinite(); }
 
 EnergyNlp::EnergyNlp(const StepProblem& step) : step_(step) {
   step.Validate();
-  if (step.constraint.kind != ConstraintKind::kFixedLoad) {
-    throw std::invalid_argument(
-        "ipopt-energy: only fixed-load steps can be posed as energy minimisation (got a " +
-        std::string(ToString(step.constraint.kind)) + " step)");
-  }
-  if (!step.model->has_energy()) {
-    throw std::invalid_argument(
-        "ipopt-energy: the model has no energy (has_energy() is false), so its equilibrium is "
-        "not a minimisation; use ipopt-mpcc or an equation formulation");
-  }
+  std::string why;
+  if (!IsEnergyStep("ipopt-energy", step, &why)) throw std::invalid_argument(why);
   const ContactModel& model = *step.model;
   const int d = model.num_dofs();
   const int nc = model.num_pairs();

@@ -54,7 +54,7 @@ class IpoptNlp {
 //   min  (pi(u) - lambda f^T u) / (R L)   s.t.  phi_p(u) / L <= 0,   u = u^k + L x,
 // lambda the step's target. Its KKT conditions are (9)-(11) with r = -R y (y >= 0 Ipopt's
 // multiplier of the upper bound c <= 0): grad pi - lambda f + grad phi^T (R y) = 0.
-// Throws std::invalid_argument for a step that is not fixed-load or a model without energy.
+// Throws std::invalid_argument for a step that IsEnergyStep refuses (common/energy_step.h).
 class EnergyNlp final : public IpoptNlp {
  public:
   explicit EnergyNlp(const StepProblem& step);

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "formulations/common/energy_step.h"
 
 namespace cb {
 
@@ -30,16 +33,8 @@ double NloptMeritObjective::Evaluate(const Vec& y, Vec* gradient) {
 // --- nlopt-energy --------------------------------------------------------------------------
 
 NloptEnergyProblem::NloptEnergyProblem(const StepProblem& step) : step_(step) {
-  if (step.constraint.kind != ConstraintKind::kFixedLoad) {
-    throw std::invalid_argument(
-        "nlopt-energy: only fixed-load steps can be posed as energy minimisation (got a " +
-        std::string(ToString(step.constraint.kind)) + " step)");
-  }
-  if (!step.model->has_energy()) {
-    throw std::invalid_argument(
-        "nlopt-energy: the model has no energy (has_energy() is false: its internal force is not "
-        "a gradient), so the step cannot be posed as energy minimisation");
-  }
+  std::string why;
+  if (!IsEnergyStep("nlopt-energy", step, &why)) throw std::invalid_argument(why);
   lambda_ = step.constraint.target;
 }
 
@@ -138,7 +133,7 @@ StepPoint NloptEnergyProblem::Recover(const Vec& y, double active_tol, int* acti
 NloptMpccProblem::NloptMpccProblem(const StepProblem& step, double weight)
     : step_(step),
       weight_(weight),
-      layout_{step.num_dofs(), step.num_pairs()},
+      layout_{step.num_dofs(), step.num_pairs(), /*has_rho=*/true},
       // The eta row is discarded; the nonsmooth case keeps it trivial.
       system_(step, EtaEquation{EtaCase::kNonsmooth, 1.0}) {}
 
@@ -155,8 +150,8 @@ double NloptMpccProblem::Objective(const Vec& z, Vec* gradient) const {
 
 void NloptMpccProblem::Equalities(const Vec& z, double* values, double* dense_gradient) {
   const int n = size();
-  const int rows12 = layout_.d + layout_.nc;  // (29), (30)
-  const int step_row = layout_.size() - 1;    // the step constraint, last row of the system
+  const int rows12 = layout_.d + layout_.nc;      // (29), (30)
+  const int step_row = layout_.constraint_row();  // the step constraint, last row of the system
   x_.resize(layout_.size());
   x_.head(n) = z;
   x_[layout_.rho()] = 0.0;

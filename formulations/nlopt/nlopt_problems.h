@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "formulations/implicit_fb/implicit_fb.h"
+#include "formulations/implicit_fb/implicit_fb_system.h"
 #include "step/step_problem.h"
 
 namespace cb {
@@ -22,7 +22,7 @@ class NloptMeritObjective {
  public:
   NloptMeritObjective(const StepProblem& step, EtaEquation eta, double scale);
   int size() const { return system_.size(); }
-  const ImplicitFbLayout& layout() const { return system_.layout(); }
+  const StepEquationLayout& layout() const { return system_.layout(); }
   // M(y), and grad_y M into *gradient when it is not null. +infinity when F is not finite at
   // y / sqrt(s) (NLopt's line searches then shorten the step).
   double Evaluate(const Vec& y, Vec* gradient);
@@ -50,7 +50,7 @@ class NloptMeritObjective {
 // on every problem.
 class NloptEnergyProblem {
  public:
-  // Throws std::invalid_argument unless the step is fixed-load and the model has an energy.
+  // Throws std::invalid_argument for a step that IsEnergyStep refuses (common/energy_step.h).
   explicit NloptEnergyProblem(const StepProblem& step);
   int size() const { return step_.num_dofs(); }
   int num_constraints() const { return step_.num_pairs(); }
@@ -84,7 +84,7 @@ class NloptMpccProblem {
   NloptMpccProblem(const StepProblem& step, double weight);
   int size() const { return layout_.size() - 1; }  // the implicit layout without rho
   int num_equalities() const { return layout_.d + layout_.nc + 1; }
-  const ImplicitFbLayout& layout() const { return layout_; }
+  const StepEquationLayout& layout() const { return layout_; }
   double Objective(const Vec& z, Vec* gradient) const;
   // The equality rows into `values`; when `dense_gradient` is not null, the m x n row-major
   // Jacobian (m = num_equalities(), n = size()), every entry written.
@@ -96,7 +96,7 @@ class NloptMpccProblem {
  private:
   const StepProblem& step_;
   double weight_;
-  ImplicitFbLayout layout_;
+  StepEquationLayout layout_;
   ImplicitFbSystem system_;
   Vec x_, residual_;
   SpMat jacobian_;

@@ -1,5 +1,5 @@
-// The nonsmooth renderings of a step (issue 3): the step equations (29) / R, (30) / L and the
-// step constraint (33) (or its replacements) of step_equations.h in the unknowns
+// The nonsmooth renderings of a step: the step equations (29) / R, (30) / L and the step
+// constraint (33) (or its replacements) of common/step_equations.h in the unknowns
 // x = (du, g^, r^, dlambda), with no smoothing unknown, closed by a nonsmooth complementarity
 // row per pair (a = g^_p, b = -r^_p):
 //
@@ -53,8 +53,8 @@
 #include <memory>
 #include <string>
 
-#include "formulations/config.h"
-#include "formulations/implicit_fb/step_equations.h"
+#include "formulations/common/config.h"
+#include "formulations/common/step_equations.h"
 #include "step/formulation.h"
 
 namespace cb {
@@ -86,7 +86,6 @@ class NonsmoothSystem final : public StepEquationSystem {
                   std::shared_ptr<PatternCache> cache = nullptr);
   ~NonsmoothSystem() override;
 
-  const StepEquationLayout& layout() const { return step_layout(); }
   ComplementarityFunction function() const { return function_; }
   // Jacobian evaluations that met a pair at a nondifferentiable point (FB: a = b = 0; min:
   // a = b) since construction, summed over pairs.
@@ -109,7 +108,6 @@ class NonsmoothFormulation final : public Formulation {
   std::string name() const override;
   std::string solver() const override { return options_.solver; }
   std::string settings() const override;
-  bool Supports(ConstraintKind) const override { return true; }
   const NonsmoothOptions& options() const { return options_; }
 
  private:
@@ -121,9 +119,15 @@ class NonsmoothFormulation final : public Formulation {
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };
 
-// Registry factories: config.solver and config.solver_options; backend options `restart`
-// (true/false) and `restart_residual` (an unknown key throws std::invalid_argument).
+// "nonsmooth-fb" (Fischer-Burmeister) or "active-set" (min).
+std::string NonsmoothName(ComplementarityFunction function);
+
+// Registry factories (nonsmooth_fb.cc, active_set.cc): config.solver and config.solver_options;
+// backend options `restart` (true/false) and `restart_residual` (an unknown key throws
+// std::invalid_argument). MakeNonsmooth is what both do with their function.
 std::unique_ptr<Formulation> MakeNonsmoothFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeActiveSet(const FormulationConfig& config);
+std::unique_ptr<Formulation> MakeNonsmooth(ComplementarityFunction function,
+                                           const FormulationConfig& config);
 
 }  // namespace cb

@@ -8,14 +8,18 @@ namespace cb {
 
 const char* ToString(StartKind kind) { return kind == StartKind::kWarm ? "warm" : "cold"; }
 
+bool Formulation::Accepts(const StepProblem& step, std::string* why) const {
+  std::string reason;
+  if (DoAccepts(step, &reason)) return true;
+  if (why != nullptr) *why = reason;
+  return false;
+}
+
 StepResult Formulation::Solve(const StepProblem& step, const StartPoint& start,
                               const SolveControls& controls) {
   step.Validate();
-  if (!available()) throw std::invalid_argument(name() + ": not available in this build");
-  if (!Supports(step.constraint.kind)) {
-    throw std::invalid_argument(name() + " cannot express the step constraint '" +
-                                std::string(ToString(step.constraint.kind)) + "'");
-  }
+  std::string why;
+  if (!Accepts(step, &why)) throw std::invalid_argument(why);
   const int d = step.num_dofs();
   const int nc = step.num_pairs();
   if (start.kind == StartKind::kWarm) {

@@ -71,18 +71,23 @@ class Formulation {
   virtual std::string solver() const = 0;
   // The settings that distinguish this instance in the records (solver, eta case, ...).
   virtual std::string settings() const = 0;
-  // Whether the dependency this formulation needs was built.
-  virtual bool available() const { return true; }
-  // Whether this formulation can express the step constraint (e.g. an energy NLP cannot
-  // express an arc-length step).
-  virtual bool Supports(ConstraintKind kind) const = 0;
 
-  // Throws std::invalid_argument on a malformed step or start (sizes) or an unsupported
-  // constraint kind, with the reason.
+  // Whether this formulation can take `step` (a well-formed one, StepProblem::Validate),
+  // decided before solving from what the step asks: its constraint kind (an energy NLP cannot
+  // express an arc-length step), its size (a dense backend's limit), what the model offers (an
+  // energy to minimise). Otherwise false with the reason, naming the formulation, in *why
+  // (when not null). Asked once per problem by the harness and the benchmarks: capability
+  // depends on the model, its size and the kind of step, not on where a path is.
+  bool Accepts(const StepProblem& step, std::string* why = nullptr) const;
+
+  // Throws std::invalid_argument on a malformed step or start (sizes), or on a step that
+  // Accepts refuses (with its reason).
   StepResult Solve(const StepProblem& step, const StartPoint& start,
                    const SolveControls& controls = {});
 
  private:
+  // Accepts without the null check; the default accepts every step.
+  virtual bool DoAccepts(const StepProblem& /*step*/, std::string* /*why*/) const { return true; }
   virtual void DoSolve(const StepProblem& step, const StartPoint& start,
                        const SolveControls& controls, StepResult* result) = 0;
 };

@@ -1,4 +1,4 @@
-#include "formulations/implicit_fb/step_equations.h"
+#include "formulations/common/step_equations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +25,13 @@ void FischerBurmeisterElement(double a, double b, double rho, double* d_a, doubl
     *d_b = M_SQRT1_2 - 1.0;
     *d_rho = 0.0;
   }
+}
+
+double ComplementarityResidual(const StepEquationLayout& l, const Vec& x) {
+  double comp = 0.0;
+  for (int p = 0; p < l.nc; ++p)
+    comp = std::max(comp, std::abs(std::min(x[l.g() + p], -x[l.r() + p])));
+  return comp;
 }
 
 void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda) {
@@ -106,17 +113,20 @@ StepEquationSystem::StepEquationSystem(const StepProblem& step, bool has_rho,
 
 StepEquationSystem::~StepEquationSystem() = default;
 
+StepEquationSystem::Unknowns StepEquationSystem::Split(const Vec& x) {
+  const StepEquationLayout& l = layout_;
+  Unknowns unknowns{x.segment(l.du(), l.d), x.segment(l.g(), l.nc), x.segment(l.r(), l.nc),
+                    x[l.dlambda()], l.has_rho ? x[l.rho()] : 0.0};
+  u_ = step_.base.u + unknowns.du;
+  return unknowns;
+}
+
 bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
   const ContactModel& model = *step_.model;
   const StepEquationLayout& l = layout_;
   const double length = step_.scales.length;
   const double force = step_.scales.force;
-  const auto du = x.segment(l.du(), l.d);
-  const auto g = x.segment(l.g(), l.nc);
-  const auto r = x.segment(l.r(), l.nc);
-  const double dlambda = x[l.dlambda()];
-  const double rho = l.has_rho ? x[l.rho()] : 0.0;
-  u_ = step_.base.u + du;
+  const auto [du, g, r, dlambda, rho] = Split(x);
   model.InternalForce(u_, &internal_);
   model.GapsAndReaction(u_, r, &phi_, &reaction_);  // grad phi^T r^, without assembling grad phi
 
@@ -142,16 +152,11 @@ bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
 }
 
 void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
+  const auto [du, g, r, dlambda, rho] = Split(x);
   const ContactModel& model = *step_.model;
   const StepEquationLayout& l = layout_;
   const double length = step_.scales.length;
   const double force = step_.scales.force;
-  const auto du = x.segment(l.du(), l.d);
-  const auto g = x.segment(l.g(), l.nc);
-  const auto r = x.segment(l.r(), l.nc);
-  const double dlambda = x[l.dlambda()];
-  const double rho = l.has_rho ? x[l.rho()] : 0.0;
-  u_ = step_.base.u + du;
   reaction_force_ = force * r;
   model.GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
 
@@ -265,7 +270,7 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
 SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
                                     const SolveControls& controls, StepResult* result,
                                     const std::function<void(const Vec&)>& on_iteration) {
-  const StepEquationLayout& l = system.step_layout();
+  const StepEquationLayout& l = system.layout();
   const StepProblem& step = system.step();
   Stopwatch clock;
   auto observe = [&](const IterationInfo& info) {
@@ -274,11 +279,7 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
     record.merit = info.merit;
     record.residual_inf = info.residual_inf;
     record.step_length = info.step_length;
-    double comp = 0.0;
-    for (int p = 0; p < l.nc; ++p) {
-      comp = std::max(comp, std::abs(std::min((*info.x)[l.g() + p], -(*info.x)[l.r() + p])));
-    }
-    record.comp_res = comp;
+    record.comp_res = ComplementarityResidual(l, *info.x);
     result->history.push_back(record);
     if (on_iteration) on_iteration(*info.x);
     if (controls.interrupted && controls.interrupted()) return false;

@@ -56,6 +56,9 @@ double SmoothedFischerBurmeister(double a, double b, double rho);
 void FischerBurmeisterElement(double a, double b, double rho, double* d_a, double* d_b,
                               double* d_rho);
 
+// ||min(g^, -r^)||_inf over the pairs of x laid out as `layout` (the history's comp_res).
+double ComplementarityResidual(const StepEquationLayout& layout, const Vec& x);
+
 // Moves (du, dlambda) onto the step constraint where that is a matter of the increment alone:
 // onto the arc-length sphere by scaling, or to the prescribed load / displacement.
 void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda);
@@ -87,7 +90,7 @@ class StepEquationSystem : public EquationSystem {
   const JacobianStructure* structure() const final {
     return has_structure_ ? &structure_ : nullptr;
   }
-  const StepEquationLayout& step_layout() const { return layout_; }
+  const StepEquationLayout& layout() const { return layout_; }
   const StepProblem& step() const { return step_; }
 
   // Adds values to a Jacobian in the order of the entries appended to the pattern.
@@ -113,6 +116,13 @@ class StepEquationSystem : public EquationSystem {
   virtual void FillExtraRow(const Vec& /*x*/, Cursor* /*cursor*/) const {}
 
  private:
+  // The unknowns of x as views (see the top of the file); Split also sets u_ = u^k + du.
+  struct Unknowns {
+    Eigen::VectorBlock<const Vec> du, g, r;
+    double dlambda, rho;  // rho = 0 without rho
+  };
+  Unknowns Split(const Vec& x);
+
   const StepProblem& step_;
   StepEquationLayout layout_;
   std::shared_ptr<PatternCache> cache_;

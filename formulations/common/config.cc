@@ -1,4 +1,4 @@
-#include "formulations/config.h"
+#include "formulations/common/config.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,5 +1,3 @@
-#include "formulations/nonsmooth/nonsmooth.h"
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -8,15 +6,12 @@
 #include <utility>
 #include <vector>
 
+#include "formulations/nonsmooth/nonsmooth.h"
+
 namespace cb {
 
-double MinFunction(double a, double b) { return a < b ? a : b; }
-
-void MinElement(double a, double b, double* d_a, double* d_b) {
-  // a <= b: the pair is active, the row reads g^ = 0 (ties included, see the header);
-  // otherwise r^ = 0.
-  *d_a = a <= b ? 1.0 : 0.0;
-  *d_b = a <= b ? 0.0 : 1.0;
+std::string NonsmoothName(ComplementarityFunction function) {
+  return function == ComplementarityFunction::kMin ? "active-set" : "nonsmooth-fb";
 }
 
 bool NonsmoothOptions::IsValid(std::string* why) const {
@@ -32,32 +27,6 @@ bool NonsmoothOptions::IsValid(std::string* why) const {
   return solver_options.IsValid(why);
 }
 
-// --- the system ------------------------------------------------------------------------------
-
-NonsmoothSystem::NonsmoothSystem(const StepProblem& step, ComplementarityFunction function,
-                                 std::shared_ptr<PatternCache> cache)
-    : StepEquationSystem(step, /*has_rho=*/false, std::move(cache)), function_(function) {}
-
-NonsmoothSystem::~NonsmoothSystem() = default;
-
-double NonsmoothSystem::Complementarity(double a, double b, double /*rho*/) const {
-  return function_ == ComplementarityFunction::kMin ? MinFunction(a, b)
-                                                    : SmoothedFischerBurmeister(a, b, 0.0);
-}
-
-void NonsmoothSystem::ComplementarityElement(double a, double b, double /*rho*/, double* d_a,
-                                             double* d_b, double* d_rho) const {
-  *d_rho = 0.0;
-  if (function_ == ComplementarityFunction::kMin) {
-    if (a == b) ++nonsmooth_elements_;
-    MinElement(a, b, d_a, d_b);
-    return;
-  }
-  if (a == 0.0 && b == 0.0) ++nonsmooth_elements_;
-  double unused = 0.0;
-  FischerBurmeisterElement(a, b, 0.0, d_a, d_b, &unused);
-}
-
 // --- the formulation -------------------------------------------------------------------------
 
 NonsmoothFormulation::NonsmoothFormulation(NonsmoothOptions options)
@@ -69,9 +38,7 @@ NonsmoothFormulation::NonsmoothFormulation(NonsmoothOptions options)
 
 NonsmoothFormulation::~NonsmoothFormulation() = default;
 
-std::string NonsmoothFormulation::name() const {
-  return options_.function == ComplementarityFunction::kMin ? "active-set" : "nonsmooth-fb";
-}
+std::string NonsmoothFormulation::name() const { return NonsmoothName(options_.function); }
 
 std::string NonsmoothFormulation::settings() const {
   std::ostringstream out;
@@ -196,12 +163,9 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
 
 // --- registry factories ------------------------------------------------------------------------
 
-namespace {
-
-std::unique_ptr<Formulation> MakeNonsmooth(const std::string& name,
-                                           ComplementarityFunction function,
+std::unique_ptr<Formulation> MakeNonsmooth(ComplementarityFunction function,
                                            const FormulationConfig& config) {
-  OptionReader reader(name, config.options);
+  OptionReader reader(NonsmoothName(function), config.options);
   NonsmoothOptions options;
   options.restart = reader.GetBool("restart", options.restart);
   options.restart_residual = reader.GetReal("restart_residual", options.restart_residual);
@@ -210,16 +174,6 @@ std::unique_ptr<Formulation> MakeNonsmooth(const std::string& name,
   options.solver = config.solver;
   options.solver_options = config.solver_options;
   return std::make_unique<NonsmoothFormulation>(options);
-}
-
-}  // namespace
-
-std::unique_ptr<Formulation> MakeNonsmoothFb(const FormulationConfig& config) {
-  return MakeNonsmooth("nonsmooth-fb", ComplementarityFunction::kFischerBurmeister, config);
-}
-
-std::unique_ptr<Formulation> MakeActiveSet(const FormulationConfig& config) {
-  return MakeNonsmooth("active-set", ComplementarityFunction::kMin, config);
 }
 
 }  // namespace cb
