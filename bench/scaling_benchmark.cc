@@ -15,11 +15,11 @@
 //    n = d + 2 nc + 1, i.e. no mesh above n = 25;
 //  - this benchmark's time budget, which is not a capability (LargestMesh):
 //    - nlopt-merit, nlopt-energy: measured at n = 25 only. On P1 LBFGS on the merit and MMA on
-//      the energy stall far above the verdict's tolerance already at n = 10 (README, known
-//      limitations); a larger mesh only makes them run into the time limit.
-//    - ipopt-mpcc: up to n = 100 (17 s there on the 2-core machine of the README); its KKT
-//      system (d + 3 nc + 1 unknowns, MUMPS) grows as d^1.5 or faster, so n = 200 and 400
-//      would take minutes each.
+//      the energy stall far above the verdict's tolerance already at n = 10 (docs/findings.md,
+//      "Known limitations"); a larger mesh only makes them run into the time limit.
+//    - ipopt-mpcc: up to n = 100; its KKT system (d + 3 nc + 1 unknowns, MUMPS)
+//      grows as d^1.5 or faster, so n = 200 and 400 would take minutes each
+//      (docs/findings.md, "Known limitations").
 // Every solve has a time limit (kTimeLimitS; kNloptTimeLimitS for NLopt, whose runs are also
 // measured once: another time-budget choice).
 //
@@ -59,7 +59,7 @@ bool IsNlopt(const std::string& name) { return name.rfind("nlopt", 0) == 0; }
 int LargestMesh(const std::string& name, std::string* why) {
   if (name == "nlopt-merit" || name == "nlopt-energy") {
     *why =
-        "fails the verdict on P1 already at n = 10 (README, known limitations): measured at "
+        "fails the verdict on P1 already at n = 10 (docs/findings.md, known limitations): measured at "
         "n = 25 only";
     return 25;
   }

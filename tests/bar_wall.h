@@ -1,4 +1,4 @@
-// The closed form of the bar pushed against a wall (PROBLEMS.md): u = lambda L / EA until the
+// The closed form of the bar pushed against a wall (docs/problems.md): u = lambda L / EA until the
 // bar touches the wall at lambda_c = EA gap / L (load P = 1), then u = gap and
 // r = -(lambda - lambda_c).
 #pragma once

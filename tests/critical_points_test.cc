@@ -1,5 +1,5 @@
 // CriticalPointFinder (path/critical_points.h) on steps of the von Mises two-bar truss built
-// from its closed form lambda(w) (apex height w; PROBLEMS.md): a step over the limit point
+// from its closed form lambda(w) (apex height w; docs/problems.md): a step over the limit point
 // (apex held sideways) and one over the bifurcation point of the steep truss with its apex free
 // sideways, where l^3 = L w^2.
 #include "path/critical_points.h"

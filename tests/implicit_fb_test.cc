@@ -1,5 +1,5 @@
 // The implicit smoothed-FB formulation: Proposition 3.1, the eta equations, the warm and cold
-// starts of METHOD.md section 4, and the Jacobian of (29)-(33) against finite differences.
+// starts of docs/method.md section 4, and the Jacobian of (29)-(33) against finite differences.
 #include "formulations/implicit_fb/implicit_fb.h"
 
 #include <gtest/gtest.h>
@@ -86,7 +86,7 @@ TEST(ImplicitFbTest, ColdStartRhoMatchesTheReport) {
   EXPECT_NEAR(0.7071, expected[2], 1e-4);
 }
 
-// The warm start point satisfies (30), (32) and (33) exactly when |rho*| > rho_ (METHOD.md
+// The warm start point satisfies (30), (32) and (33) exactly when |rho*| > rho_ (docs/method.md
 // section 4), with gamma = 1 and with gamma < 1.
 void ExpectWarmStartSatisfiesRows(double reaction_sign) {
   // A long arch (d >= 1000, so condensed, with the whole Kc factorised: most dofs are contact

@@ -1,5 +1,5 @@
-// The arc-length driver against closed-form paths (PROBLEMS.md verification problems), the
-// kink location of METHOD.md section 6, step cut-back and the report's P3 path.
+// The arc-length driver against closed-form paths (docs/problems.md verification problems), the
+// kink location of docs/method.md section 6, step cut-back and the report's P3 path.
 #include "path/path.h"
 #include "path/stability.h"
 
@@ -200,7 +200,7 @@ double Distance(const State& a, const State& b) {
   return std::sqrt((a.u - b.u).squaredNorm() + (a.lambda - b.lambda) * (a.lambda - b.lambda));
 }
 
-// METHOD.md section 6 on the report's P3 path: every located kink has g = r = 0 at its pair to
+// docs/method.md section 6 on the report's P3 path: every located kink has g = r = 0 at its pair to
 // the verdict tolerance (in the scaled variables the verdict uses), is an equilibrium, and lies
 // on the path between the two accepted states that bracket it: the two legs through it are at
 // most 1.5 times the chord (a step may cut a corner of the path, so not on the chord itself).

@@ -145,7 +145,7 @@ std::vector<Option> MakeOptions() {
        "the equation solver of implicit-fb, nonsmooth-fb and active-set (default newton)",
        EquationSolverNames, [](O o, S v, A* a) { a->config.solver = Choice(o, v); }},
       {"--eta", "1|2|3|4", kPathCommands, Need::kOptional, false,
-       "implicit-fb's eta case (METHOD.md section 2; default 1)", nullptr,
+       "implicit-fb's eta case (docs/method.md section 2; default 1)", nullptr,
        [](O o, S v, A* a) {
          a->config.eta = ParseInteger(o, v);
          if (a->config.eta < 1 || a->config.eta > 4) Refuse(o, "must be 1, 2, 3 or 4");
@@ -188,7 +188,7 @@ std::vector<Option> MakeOptions() {
        "the formulation that traces the reference path of replay mode (default implicit-fb)",
        FormulationNames, [](O o, S v, A* a) { a->reference = Choice(o, v); }},
       {"--tol", "T", kPathCommands, Need::kOptional, false,
-       "the verdict's tolerance (METHOD.md section 7; default 1e-8)", nullptr,
+       "the verdict's tolerance (docs/method.md section 7; default 1e-8)", nullptr,
        [](O o, S v, A* a) { a->tolerance = PositiveNumber(o, v); }},
       {"--linear-solver", "NAME", kPathCommands, Need::kOptional, false,
        "the sparse linear solver of the equation solvers", LinearSolverNames,
@@ -197,7 +197,7 @@ std::vector<Option> MakeOptions() {
        "a step that fails is retried with theta halved at most N times (default 6)", nullptr,
        [](O o, S v, A* a) { a->max_cutbacks = NonNegativeInteger(o, v); }},
       {"--no-kinks", "", kRun, Need::kOptional, false,
-       "do not locate the kinks (METHOD.md section 6)", nullptr,
+       "do not locate the kinks (docs/method.md section 6)", nullptr,
        [](O, S, A* a) { a->locate_kinks = false; }},
       {"--bifurcations", "off|detect|switch", kRun, Need::kOptional, false,
        "detect (default): watch the sign of the bordered stiffness's determinant and record "

@@ -213,7 +213,7 @@ const RecordSchema<AttemptRow>& StepsSchema() {
            [](const D& d) -> Cell { return d.record.arc_length; }},
           StatusColumn<D>(),
           SettingsColumn<D>(),
-          {"length_scale", "L, the length scale of the contact unknowns (METHOD.md section 2)",
+          {"length_scale", "L, the length scale of the contact unknowns (docs/method.md section 2)",
            [](const D& d) -> Cell { return d.problem.scales.length; }},
           {"force_scale", "R, the force scale of the contact unknowns",
            [](const D& d) -> Cell { return d.problem.scales.force; }},
@@ -268,7 +268,7 @@ const RecordSchema<KinkRow>& KinksSchema() {
   static const RecordSchema<D> schema{
       "kinks.csv",
       "",
-      "located kink (a pair with g = r = 0, METHOD.md section 6; compare: the reference "
+      "located kink (a pair with g = r = 0, docs/method.md section 6; compare: the reference "
       "path's)",
       {"run", "compare"},
       {

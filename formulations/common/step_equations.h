@@ -1,7 +1,7 @@
 // What the equation formulations of a step (implicit-fb, nonsmooth-fb, active-set) share: the
 // scaled unknowns, the rows (29) / R, (30) / L and the step constraint (33) (or its
 // replacements), their Jacobian blocks assembled through one cached ScatterPattern, the start
-// points of METHOD.md section 4, and the bookkeeping of a solve. Each formulation adds only its
+// points of docs/method.md section 4, and the bookkeeping of a solve. Each formulation adds only its
 // complementarity rows (and, for implicit-fb, the smoothing unknown rho with its row (32)).
 //
 // Unknowns x = (du, g^, r^, dlambda[, rho]) with g^ = g / L, r^ = r / R; rows
@@ -63,7 +63,7 @@ double ComplementarityResidual(const StepEquationLayout& layout, const Vec& x);
 // onto the arc-length sphere by scaling, or to the prescribed load / displacement.
 void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda);
 
-// The start of METHOD.md section 4 in the scaled unknowns (du, g^, r^, dlambda) of a vector of
+// The start of docs/method.md section 4 in the scaled unknowns (du, g^, r^, dlambda) of a vector of
 // size `size` (entries beyond dlambda are left zero):
 //  warm: du0, dlambda0 from `start` fitted to the constraint (38), (41), r^0 = r^k / R (40),
 //        g^0 = -phi(u^k + du0) / L (39), so (30) and (33) hold exactly;

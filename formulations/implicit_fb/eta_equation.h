@@ -7,7 +7,7 @@
 
 namespace cb {
 
-// The eta cases of METHOD.md section 2 (the report's section 5.1).
+// The eta cases of docs/method.md section 2 (the report's section 5.1).
 enum class EtaCase { kCase1 = 1, kCase2 = 2, kCase3 = 3, kNonsmooth = 4 };
 
 // The eta equation (32) divided by nc, in terms of the mean m = g^T r^ / nc (<= 0 at a

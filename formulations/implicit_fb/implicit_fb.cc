@@ -10,7 +10,7 @@ bool ImplicitFbOptions::IsValid(std::string* why) const {
   return IsValidSmoothing(eta, gamma_tol, rho_min, why) && solver_options.IsValid(why);
 }
 
-// --- start points (METHOD.md section 4) ----------------------------------------------------
+// --- start points (docs/method.md section 4) ----------------------------------------------------
 
 ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& start,
                                     const ImplicitFbOptions& options) {

@@ -2,7 +2,7 @@
 // the step equations (29)-(33) in the unknowns x = (du, g, r, dlambda, rho), with rho an
 // unknown tied to the complementarity residual by the eta equation (32).
 //
-// Scaling (METHOD.md section 2): the contact unknowns are g^ = g / L and r^ = r / R, and the
+// Scaling (docs/method.md section 2): the contact unknowns are g^ = g / L and r^ = r / R, and the
 // rows are made dimensionless, so the system solved is
 //   F1 = (grad pi(u) - lambda f) / R - grad phi(u)^T r^               (29) / R,   d rows
 //   F2 = g^ + phi(u) / L                                               (30) / L,   nc rows
@@ -39,7 +39,7 @@ struct ImplicitFbOptions {
   bool IsValid(std::string* why) const;
 };
 
-// The start of METHOD.md section 4 in the scaled unknowns, with the gamma it chose.
+// The start of docs/method.md section 4 in the scaled unknowns, with the gamma it chose.
 struct ImplicitFbStart {
   Vec x;
   double gamma = 1.0;

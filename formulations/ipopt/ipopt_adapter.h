@@ -11,10 +11,9 @@
 //                                  1e-8 on rows scaled as ours, times R for (29); Ipopt's default
 //                                  1e-8 / 1e-4 / 1e-4 leave the barrier's complementarity and
 //                                  the constraint violation above that. The final barrier
-//                                  parameter is tol / 10: with tol = 1e-10 P1's nearly degenerate
-//                                  pairs at the edge of the contact zone ended at
-//                                  min(g/L, -r/R) = 4e-9, too close to 1e-8; 1e-12 gives 1e-10
-//                                  at the same iteration counts.
+//                                  parameter is tol / 10, and P1's nearly degenerate pairs at the
+//                                  edge of the contact zone need it well below the verdict's
+//                                  1e-8 (docs/findings.md).
 //   bound_relax_factor = 0, honor_original_bounds = yes
 //                                  Ipopt relaxes every bound by 1e-8 by default, which would let
 //                                  g < 0 and r > 0 by 1e-8 in the scaled variables, exactly the
@@ -38,11 +37,10 @@
 //                                  away from the answer by a thousand times the tolerance.
 //   mu_init = 1e-6 (option `warm_mu_init`): a warm point is nearly complementary; starting the
 //                                  barrier at the default 0.1 would first pull it to the centre.
-//                                  1e-9 saves an iteration per smooth step (2 instead of 3 on
-//                                  arch-curved) but cannot switch a pair into contact: on the
-//                                  two-bar truss landing on its floor Ipopt then reports
-//                                  Infeasible_Problem_Detected until the arc length is cut to
-//                                  nothing; 1e-6 lands, and locates the kink (tests).
+//                                  A smaller mu_init saves an iteration per smooth step but
+//                                  cannot switch a pair into contact (the two-bar truss landing
+//                                  on its floor is then reported infeasible); 1e-6 lands, and
+//                                  locates the kink (tests; docs/findings.md).
 #pragma once
 
 #include <exception>
@@ -95,8 +93,8 @@ struct IpoptWarmState {
   IpoptPrimalDual point;
 };
 
-// The TNLP over an IpoptNlp. Exceptions never leave these methods into Ipopt (ARCHITECTURE.md
-// habit 2): they are caught, stored, the evaluation reports failure and the next
+// The TNLP over an IpoptNlp. Exceptions never leave these methods into Ipopt (docs/architecture.md,
+// house rule 2): they are caught, stored, the evaluation reports failure and the next
 // intermediate_callback stops Ipopt; the caller rethrows after OptimizeTNLP returns.
 class TnlpAdapter final : public Ipopt::TNLP {
  public:

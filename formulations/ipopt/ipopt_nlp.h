@@ -1,7 +1,7 @@
 // The NLPs that the Ipopt formulations hand to Ipopt, written without Ipopt's types so that
-// the tests can check their derivatives without Ipopt's headers (ARCHITECTURE.md habit 4).
+// the tests can check their derivatives without Ipopt's headers (docs/architecture.md, house rule 4).
 //
-// Both NLPs work in scaled unknowns (METHOD.md section 2, README "Method notes"): a
+// Both NLPs work in scaled unknowns (docs/method.md sections 2 and 9): a
 // displacement increment is measured in the contact length scale L (x_u = du / L), a gap in L
 // (g^ = g / L) and a reaction in the force scale R (r^ = r / R), so that every unknown is O(1)
 // at the solution and the rows below are dimensionless. Ipopt's own gradient-based scaling is

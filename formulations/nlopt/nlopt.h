@@ -24,8 +24,8 @@
 //  - SolveControls are polled in every callback; interrupted() or the time limit force a stop
 //    (nlopt_force_stop; the time limit is also NLopt's maxtime). An exception thrown inside a
 //    callback (by the model, say) is caught there, NLopt is force-stopped, and the exception is
-//    rethrown after nlopt_optimize returns: nothing crosses NLopt's C frames (ARCHITECTURE.md habit
-//    2).
+//    rethrown after nlopt_optimize returns: nothing crosses NLopt's C frames (docs/architecture.md,
+//    house rule 2).
 //  - Options travel as FormulationConfig::options (KEY=VALUE); unknown keys are refused.
 #pragma once
 

@@ -1,10 +1,8 @@
 // nlopt-energy: fixed-load steps of models with an energy: min pi(u) - lambda f^T u s.t.
 // phi(u) <= 0 (NloptEnergyProblem for the scaling). A floor every energy method meets: near the
 // optimum a step that reduces the residual e of (29) lowers the energy by only ~ e^2 / K, which
-// vanishes below the energy's rounding (eps |pi|) long before e meets the verdict:
-// MMA and CCSAQ stall at eq_res 4e-8 / 9e-8 on a 2-unknown LCP (SLSQP, whose QP step is exact
-// on a quadratic, reaches 0), and SLSQP stalls at 1.4e-6 on P1 n = 10, where MMA and CCSAQ,
-// first-order on that ill-conditioned energy, are still at 1e-3 after 20000 evaluations. Start: du0
+// vanishes below the energy's rounding (eps |pi|) long before e meets the verdict
+// (docs/findings.md, "Known limitations", has where each algorithm stalls). Start: du0
 // = start.du (warm; the path driver's fixed-load start is du = 0) or du0 = 0 (cold). Reactions by
 // least squares from (29) on the active pairs (NloptEnergyProblem::Recover).
 #include <cmath>

@@ -30,7 +30,7 @@
 // by max_iterations, and revisits of an earlier active set are counted and reported (details,
 // message).
 //
-// Starts (METHOD.md section 4, MakeStepEquationStart): warm du0, dlambda0 from the StartPoint
+// Starts (docs/method.md section 4, MakeStepEquationStart): warm du0, dlambda0 from the StartPoint
 // fitted to the constraint, r0 = r^k, g0 = -phi(u^k + du0); cold du0 = 0, g^0 = -1, r^0 = +1.
 // The kink step (53) uses the smooth replacement g^ + r^ = 0 for its pair, as implicit-fb does.
 //
@@ -72,7 +72,7 @@ struct NonsmoothOptions {
   SolverOptions solver_options;
   bool restart = true;  // see "Restart" above
   // Restart only when the first run stopped with ||F||_inf above this: a stall at the rounding
-  // floor of (29) (about 1e-10 on P3 at lambda ~ 80, where E A ~ 1e7 kN) is a usable point that
+  // floor of (29) (large E A against small residual forces, as on P3) is a usable point that
   // the verdict accepts, and a restart from it could only find the path's other root.
   double restart_residual = 1e-6;
 

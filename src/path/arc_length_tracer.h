@@ -1,4 +1,4 @@
-// The arc-length path driver (METHOD.md sections 3-6) behind TraceArcLengthPath. Each step of
+// The arc-length path driver (docs/method.md sections 3-6) behind TraceArcLengthPath. Each step of
 // Run() is a sequence of named steps: choose how the step leaves its origin (a StepLeg: along
 // the branch, or off a bifurcation point), attempt it with cut-backs of the arc length, locate
 // the kinks within it and redirect the path past them, detect the critical points within it,

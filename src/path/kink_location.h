@@ -1,4 +1,4 @@
-// Kink location (METHOD.md section 6): where a pair's contact status changes between two
+// Kink location (docs/method.md section 6): where a pair's contact status changes between two
 // accepted states, the path has a nonsmooth point with g_p = r_p = 0, found by solving
 // (29)-(32) with (53) in place of the arc-length row.
 #pragma once

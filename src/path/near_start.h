@@ -1,5 +1,5 @@
 // A start near the solution of a fixed-load problem, as the report's section 5.1 starts eta
-// case 3 (whose degenerate root converges only linearly, METHOD.md section 2) close to the
+// case 3 (whose degenerate root converges only linearly, docs/method.md section 2) close to the
 // solution: the fixed-load problem is solved once by a reference formulation, and its solution
 // is perturbed by a small relative offset with a fixed pattern, so that runs are reproducible.
 #pragma once

@@ -1,4 +1,4 @@
-// The path driver: traces a loading path by the arc-length method (METHOD.md sections 3-6)
+// The path driver: traces a loading path by the arc-length method (docs/method.md sections 3-6)
 // with any Formulation, judging every step by the verdict. It knows formulations only through
 // the common interface, and observes through PathObserver (no I/O here).
 #pragma once
@@ -23,7 +23,7 @@ struct PathOptions {
   double arc_length = 0.1;     // theta of (33)
   double lambda_weight = 1.0;  // w of ||(du, dlambda)||_H
   int max_steps = 100;         // accepted steps to take
-  double tolerance = 1e-8;     // verdict tolerance (METHOD.md section 7)
+  double tolerance = 1e-8;     // verdict tolerance (docs/method.md section 7)
   StartKind start = StartKind::kWarm;
   // A step that fails the verdict (or turns back) is retried with theta halved, at most this
   // many times; then the path stops with Status::kFailed. After an accepted step theta grows
@@ -64,7 +64,7 @@ struct StepAttempt {
   bool branch_switch = false;  // this step left a bifurcation point along its null vector
 };
 
-// A nonsmooth point of the path (METHOD.md section 6): where pair `pair` has g = r = 0,
+// A nonsmooth point of the path (docs/method.md section 6): where pair `pair` has g = r = 0,
 // located by solving (29)-(32) with (53) from the accepted state before it.
 struct KinkRecord {
   int step = 0;  // located between accepted steps step - 1 and step
@@ -121,7 +121,7 @@ struct PathSummary {
   State final_state;
 };
 
-// The tangent predictor of METHOD.md section 5: solves
+// The tangent predictor of docs/method.md section 5: solves
 //   [K_t  -G_c^T] [du]   [f]
 //   [G_c    0   ] [dr] = [0],   K_t = hess pi - sum_p r_p hess phi_p,
 // with G_c the gap-Jacobian rows of the pairs closed at `state` (g/L + r/R <= 0), and scales

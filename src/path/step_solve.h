@@ -6,7 +6,7 @@
 
 namespace cb {
 
-// A step's answer with its verdict (METHOD.md section 7) and the state it reaches.
+// A step's answer with its verdict (docs/method.md section 7) and the state it reaches.
 struct JudgedStep {
   StepResult result;
   Verdict verdict;

@@ -1,4 +1,4 @@
-// The common interface of every rendering of a loading step (ARCHITECTURE.md "Interfaces").
+// The common interface of every rendering of a loading step (docs/architecture.md, "The layers").
 // Solve() is non-virtual: it validates, times and fills the common fields, then calls the
 // private DoSolve (the pattern of Drake's SolverBase).
 #pragma once

@@ -1,5 +1,5 @@
 // One loading step of a contact model, as every formulation receives it: the known state, the
-// step constraint that closes the system, and the contact scales of METHOD.md section 2.
+// step constraint that closes the system, and the contact scales of docs/method.md section 2.
 #pragma once
 
 #include <string>
