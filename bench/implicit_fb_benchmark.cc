@@ -1,6 +1,6 @@
 // Google Benchmark timings of the implicit smoothed-FB formulation against its targets
-// (docs/findings.md, "Performance"), each for the linear solvers named in the benchmark's name (`cholmod`, the default
-// condensed Cholesky, and `klu`, the full-system LU):
+// (docs/findings.md, "Performance"), each for the linear solvers named in the benchmark's name
+// (`cholmod`, the default condensed Cholesky, and `klu`, the full-system LU):
 //  - P1 `block` cold solve for n = 25 ... 400 (the report's section 5.1 start), with the peak
 //    resident memory of one solve (VmHWM after resetting the high-water mark);
 //  - one warm P3 `arch-curved` step, replayed from an accepted state of the path;

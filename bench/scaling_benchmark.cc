@@ -59,7 +59,8 @@ bool IsNlopt(const std::string& name) { return name.rfind("nlopt", 0) == 0; }
 int LargestMesh(const std::string& name, std::string* why) {
   if (name == "nlopt-merit" || name == "nlopt-energy") {
     *why =
-        "fails the verdict on P1 already at n = 10 (docs/findings.md, known limitations): measured at "
+        "fails the verdict on P1 already at n = 10 (docs/findings.md, known limitations): measured "
+        "at "
         "n = 25 only";
     return 25;
   }

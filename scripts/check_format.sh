@@ -9,7 +9,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
 
-"$here/scripts/install_packages.sh" clang-format flake8
+"$here/scripts/install_packages.sh" format  # scripts/packages.txt
 
 tracked() { git ls-files "$@" 2>/dev/null; }
 mapfile -t cxx < <(tracked '*.h' '*.cc' ||

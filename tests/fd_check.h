@@ -1,5 +1,5 @@
-// Finite-difference derivative checks shared by the tests (docs/architecture.md, house rule 4, in the
-// manner of Ceres' GradientChecker): central differences with a step scaled to each entry.
+// Finite-difference derivative checks shared by the tests (docs/architecture.md, house rule 4, in
+// the manner of Ceres' GradientChecker): central differences with a step scaled to each entry.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// Shared test fixtures with known answers (docs/architecture.md, house rule 5): each is a step (or an
-// arc-length path) of a contact model with a CheckSolution that judges an accepted state
-// against the answer known independently of any formulation. Every formulation's tests run the
-// same fixtures (tests/formulations_test.cc).
+// Shared test fixtures with known answers (docs/architecture.md, house rule 5): each is a step (or
+// an arc-length path) of a contact model with a CheckSolution that judges an accepted state against
+// the answer known independently of any formulation. Every formulation's tests run the same
+// fixtures (tests/formulations_test.cc).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -33,7 +33,8 @@ struct Fixture {
   // The answer is unique, so every formulation must agree with implicit-fb on it.
   bool unique = true;
   // The report's cold start g^0 = -1, r^0 = +1 is meaningful (a fixed start far from a path's
-  // later steps is not: docs/findings.md "Known limitations"; nor on the Kojima-Shindo NCP, see there).
+  // later steps is not: docs/findings.md "Known limitations"; nor on the Kojima-Shindo NCP, see
+  // there).
   bool cold_start = true;
   std::function<::testing::AssertionResult(const State&)> check;
 

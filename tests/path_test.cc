@@ -1,7 +1,6 @@
 // The arc-length driver against closed-form paths (docs/problems.md verification problems), the
 // kink location of docs/method.md section 6, step cut-back and the report's P3 path.
 #include "path/path.h"
-#include "path/stability.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +9,7 @@
 
 #include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
+#include "path/stability.h"
 #include "problems/problem.h"
 #include "verdict/verdict.h"
 
@@ -193,7 +193,6 @@ TEST(PathTest, ArchCurvedFirst300StepsAllVerifiedWithNewton) {
     EXPECT_TRUE(k.between) << "kink of pair " << k.pair << " at step " << k.step;
   }
 }
-
 
 // H-distance between two states (w = 1).
 double Distance(const State& a, const State& b) {

@@ -1,8 +1,8 @@
 // What the equation formulations of a step (implicit-fb, nonsmooth-fb, active-set) share: the
 // scaled unknowns, the rows (29) / R, (30) / L and the step constraint (33) (or its
 // replacements), their Jacobian blocks assembled through one cached ScatterPattern, the start
-// points of docs/method.md section 4, and the bookkeeping of a solve. Each formulation adds only its
-// complementarity rows (and, for implicit-fb, the smoothing unknown rho with its row (32)).
+// points of docs/method.md section 4, and the bookkeeping of a solve. Each formulation adds only
+// its complementarity rows (and, for implicit-fb, the smoothing unknown rho with its row (32)).
 //
 // Unknowns x = (du, g^, r^, dlambda[, rho]) with g^ = g / L, r^ = r / R; rows
 //   F1 = (grad pi(u) - lambda f) / R - grad phi(u)^T r^       (29) / R,   d rows

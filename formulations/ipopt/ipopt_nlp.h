@@ -1,5 +1,6 @@
 // The NLPs that the Ipopt formulations hand to Ipopt, written without Ipopt's types so that
-// the tests can check their derivatives without Ipopt's headers (docs/architecture.md, house rule 4).
+// the tests can check their derivatives without Ipopt's headers (docs/architecture.md, house rule
+// 4).
 //
 // Both NLPs work in scaled unknowns (docs/method.md sections 2 and 9): a
 // displacement increment is measured in the contact length scale L (x_u = du / L), a gap in L

@@ -669,7 +669,8 @@ def step_benchmark_section(results_dir):
 
 # --- the targets of the implicit formulation (implicit_fb_benchmark.json) ---------
 
-# Target bounds (docs/findings.md "Performance"): Newton, warm, eta case 1, the default linear solver.
+# Target bounds (docs/findings.md "Performance"): Newton, warm, eta case 1, the default
+# linear solver.
 TARGET_P1_N50_S = 0.1
 TARGET_P3_STEP_S = 0.5e-3
 TARGET_P3_PATH_S = 1.5

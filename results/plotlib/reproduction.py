@@ -377,8 +377,8 @@ def p2(results_dir, lines):
     lines.append("")
     if b is not None and c is not None:
         lines.append("The suite's B is %s; C lies %s. The report's B is a kink made by a contact "
-                     "change with C after it: the reconstructed geometry (docs/problems.md) differs in "
-                     "this detail, and the suite says so rather than forcing it." % (
+                     "change with C after it: the reconstructed geometry (docs/problems.md) "
+                     "differs in this detail, and the suite says so rather than forcing it." % (
                          "at a kink" if b["nonsmooth"] else "a smooth limit point (no contact "
                          "change within a step of it)",
                          "a hair past B (the two critical points are %.1e apart in lambda: the "

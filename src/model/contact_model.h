@@ -77,8 +77,7 @@ class ContactModel {
     Gaps(u, phi);
     GeneralisedReaction(u, r, reaction);
   }
-  virtual void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
-                              SpMat* curvature) const {
+  virtual void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian, SpMat* curvature) const {
     GapJacobian(u, jacobian);
     GapCurvature(u, r, curvature);
   }

@@ -3,8 +3,8 @@
 //   A = [K_t  -G_c^T]     K_t = hess pi - sum_p r_p hess phi_p,
 //       [G_c     0  ],    G_c = the gap-Jacobian rows of the pairs closed at the state.
 //
-// It gives the tangent of the path (docs/method.md section 5: A [du; dr] = [f; 0]) and the stability
-// of the state. With Z a basis of the null space of G_c (the motions that keep the closed
+// It gives the tangent of the path (docs/method.md section 5: A [du; dr] = [f; 0]) and the
+// stability of the state. With Z a basis of the null space of G_c (the motions that keep the closed
 // contacts closed), the state is stable when Z^T K_t Z is positive definite; its number of
 // negative eigenvalues (the "unstable modes") changes where an eigenvalue crosses zero: at a
 // limit point (the null vector phi has phi^T f != 0 and the load parameter turns) or at a

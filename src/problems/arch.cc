@@ -29,10 +29,10 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
   p.DeclareReal("area_step", 0.02, "area decrease from one member group to the next [m^2]", -1e6,
                 1e6);
   p.DeclareReal("youngs_modulus", 20e6, "E [kN/m^2] (20 GPa)", 0.0, 1e30, true);
-  // Reconstruction (docs/problems.md, "The load unit (reconstruction)"): the report prints "5 lambda kN" (P2) and
-  // "lambda kN" (P3); read in kN the limit points lie some 10^6 arc-length steps away, read in
-  // MN (1000 kN) within the report's order of steps. Only the product load x lambda matters:
-  // load = 5 (kN) gives the printed reading.
+  // Reconstruction (docs/problems.md, "The load unit (reconstruction)"): the report prints "5
+  // lambda kN" (P2) and "lambda kN" (P3); read in kN the limit points lie some 10^6 arc-length
+  // steps away, read in MN (1000 kN) within the report's order of steps. Only the product load x
+  // lambda matters: load = 5 (kN) gives the printed reading.
   p.DeclareReal("load", load,
                 "load at node (a) in +x per unit lambda [kN] (reconstruction: the report's "
                 "load unit read as MN)",

@@ -57,7 +57,8 @@ Problem BuildBarWall(const Parameters& p) {
 
 // --- two-bar (von Mises) truss ----------------------------------------------------------------
 // Supports at (-b, 0) and (b, 0), apex at (0, h), apex x fixed (so the path stays symmetric)
-// unless apex = free, load lambda P downward at the apex. With w = h - v the apex height and l = sqrt(b^2 + w^2):
+// unless apex = free, load lambda P downward at the apex. With w = h - v the apex height and l =
+// sqrt(b^2 + w^2):
 //   lambda(w) = (2 E A / P) (1/l - 1/L) w,            L = sqrt(b^2 + h^2),
 // with limit points where l^3 = b^2 L. The obstacle variant puts a floor y < floor_height under
 // the apex: once the apex touches it, w stays at floor_height and the floor carries

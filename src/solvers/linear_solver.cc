@@ -349,9 +349,10 @@ class KluSolver final : public PatternTrackingSolver {
 
 std::vector<std::string> LinearSolverNames() {
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
-  // The condensed Cholesky first: the fastest on every problem of the suite (docs/linear-solvers.md),
-  // exact through refinement, and KLU (its fallback) where a system has no usable structure.
-  // KLU next: the fastest LU, with the refactorisation path that suits Newton's fixed pattern.
+  // The condensed Cholesky first: the fastest on every problem of the suite
+  // (docs/linear-solvers.md), exact through refinement, and KLU (its fallback) where a system has
+  // no usable structure. KLU next: the fastest LU, with the refactorisation path that suits
+  // Newton's fixed pattern.
   return {"cholmod", "klu", "sparse-lu", "umfpack"};
 #else
   return {"sparse-lu"};
