@@ -94,21 +94,21 @@ std::unique_ptr<Reference> TraceReference(const std::string& problem_name) {
 
 // Step k (1-based) of the replay: its problem and start, exactly as ReplayPath builds them.
 StepProblem ReplayStep(const Reference& ref, int k) {
-  const State base = k == 1 ? ZeroState(*ref.problem.model) : ref.path.states[k - 2];
-  const ConstraintKind kind = ref.path.kinds[k - 1];
+  const State base = k == 1 ? ZeroState(*ref.problem.model) : ref.path.steps[k - 2].state;
+  const ConstraintKind kind = ref.path.steps[k - 1].kind;
   const StepConstraint constraint =
       kind == ConstraintKind::kFixedLoad
-          ? StepConstraint::FixedLoad(base.lambda + ref.path.increments[k - 1].dlambda)
-          : StepConstraint::ArcLength(ref.path.arc_lengths[k - 1]);
+          ? StepConstraint::FixedLoad(base.lambda + ref.path.steps[k - 1].increment.dlambda)
+          : StepConstraint::ArcLength(ref.path.steps[k - 1].arc_length);
   return StepProblem{ref.problem.model.get(), base, constraint, ref.problem.scales};
 }
 
 StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any warm_state) {
   StartPoint start;
   start.kind = kind;
-  start.r = k == 1 ? Vec::Zero(ref.problem.model->num_pairs()) : ref.path.states[k - 2].r;
-  start.du = ref.path.predictions[k - 1].du;
-  start.dlambda = ref.path.predictions[k - 1].dlambda;
+  start.r = k == 1 ? Vec::Zero(ref.problem.model->num_pairs()) : ref.path.steps[k - 2].state.r;
+  start.du = ref.path.steps[k - 1].prediction.du;
+  start.dlambda = ref.path.steps[k - 1].prediction.dlambda;
   start.warm_state = std::move(warm_state);
   return start;
 }
@@ -116,8 +116,8 @@ StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any war
 // Accepted as in replay mode: verified, and not the other root of (33) (pointing against the
 // reference step).
 bool Reversed(const Reference& ref, int k, const StepPoint& p) {
-  const StepPoint& r = ref.path.increments[k - 1];
-  return ref.path.kinds[k - 1] == ConstraintKind::kArcLength &&
+  const StepPoint& r = ref.path.steps[k - 1].increment;
+  return ref.path.steps[k - 1].kind == ConstraintKind::kArcLength &&
          p.du.dot(r.du) + p.dlambda * r.dlambda <= 0.0;
 }
 
@@ -184,7 +184,7 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
 
 // The representative steps (see the top of the file), as (label, k) with 2 <= k <= steps.
 std::vector<std::pair<std::string, int>> RepresentativeSteps(const Reference& ref) {
-  const int steps = static_cast<int>(ref.path.states.size());
+  const int steps = static_cast<int>(ref.path.steps.size());
   std::vector<std::pair<std::string, int>> out;
   if (steps < 2) return out;
   const int early = std::min(kEarlyStep, steps);
@@ -216,10 +216,10 @@ int main(int argc, char** argv) {
     auto ref = TraceReference(problem);
     const auto steps = RepresentativeSteps(*ref);
     std::string where =
-        std::to_string(ref->path.states.size()) + " accepted steps (" + ref->summary.message + ")";
+        std::to_string(ref->path.steps.size()) + " accepted steps (" + ref->summary.message + ")";
     for (const auto& [label, k] : steps) {
       where += "; " + label + " = step " + std::to_string(k) + " (lambda " +
-               std::to_string(ref->path.states[k - 1].lambda) + ", " +
+               std::to_string(ref->path.steps[k - 1].state.lambda) + ", " +
                std::to_string(ref->n_contact[k - 1]) + " pairs in contact)";
     }
     std::fprintf(stderr, "reference %s: %s [%.2f s]\n", problem.c_str(), where.c_str(),

@@ -127,15 +127,15 @@ void ArchCurvedWarmStep(benchmark::State& state, const std::string& linear_solve
   options.arc_length = p.arc_length;
   options.max_steps = k;
   TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), reference, options, &recorder);
-  if (static_cast<int>(recorder.states.size()) < k) {
+  if (static_cast<int>(recorder.steps.size()) < k) {
     state.SkipWithError("the reference path did not reach the requested step");
     return;
   }
-  const State& base = recorder.states[k - 1];
+  const State& base = recorder.steps[k - 1].state;
   StepProblem step{p.model.get(), base, StepConstraint::ArcLength(p.arc_length), p.scales};
   StartPoint start;
-  start.du = recorder.increments[k - 1].du;
-  start.dlambda = recorder.increments[k - 1].dlambda;
+  start.du = recorder.steps[k - 1].increment.du;
+  start.dlambda = recorder.steps[k - 1].increment.dlambda;
   start.r = base.r;
   ImplicitFb formulation(Options(linear_solver));
   StepResult result = formulation.Solve(step, start);  // analyses the pattern
@@ -279,12 +279,12 @@ void IterationOverFactorizationArchCurved(benchmark::State& state,
   options.arc_length = p.arc_length;
   options.max_steps = static_cast<int>(state.range(0));
   TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), reference, options, &recorder);
-  StepProblem step{p.model.get(), recorder.states.back(), StepConstraint::ArcLength(p.arc_length),
-                   p.scales};
+  StepProblem step{p.model.get(), recorder.steps.back().state,
+                   StepConstraint::ArcLength(p.arc_length), p.scales};
   StartPoint start;
-  start.du = recorder.increments.back().du;
-  start.dlambda = recorder.increments.back().dlambda;
-  start.r = recorder.states.back().r;
+  start.du = recorder.steps.back().increment.du;
+  start.dlambda = recorder.steps.back().increment.dlambda;
+  start.r = recorder.steps.back().state.r;
   IterationOverFactorization(state, step, start, linear_solver);
 }
 

@@ -216,7 +216,7 @@ int Compare(const RunArguments& a) {
     tee.kinks = &kinks_only;
     const PathSummary s = Trace(problem, *reference, options, &tee);
     std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
-    if (path.states.empty()) {
+    if (path.steps.empty()) {
       std::fprintf(stderr, "contactbench: the reference path has no verified step to replay\n");
       return kExitFailure;
     }
@@ -234,7 +234,7 @@ int Compare(const RunArguments& a) {
         continue;
       }
       RunRecorder recorder(&files, problem, label,
-                           a.mode == "replay" ? static_cast<int>(path.states.size()) : total);
+                           a.mode == "replay" ? static_cast<int>(path.steps.size()) : total);
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
