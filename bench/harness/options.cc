@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/registry.h"
 #include "problems/problem.h"
 #include "solvers/linear_solver.h"
@@ -148,7 +149,8 @@ std::vector<Option> MakeOptions() {
        "implicit-fb's eta case (docs/method.md section 2; default 1)", nullptr,
        [](O o, S v, A* a) {
          a->config.eta = ParseInteger(o, v);
-         if (a->config.eta < 1 || a->config.eta > 4) Refuse(o, "must be 1, 2, 3 or 4");
+         std::string why;
+         if (!IsValidEtaCase(a->config.eta, &why)) Refuse(o, why);
        }},
       {"--steps", "N", kPathCommands, Need::kOptional, false,
        "accepted steps to take (default: the problem's)", nullptr,

@@ -78,10 +78,15 @@ double WarmStartGamma(double m, double gamma_tol) {
   return std::sqrt((1.0 - gamma_tol) / m);
 }
 
+bool IsValidEtaCase(int eta, std::string* why) {
+  if (eta >= 1 && eta <= 4) return true;
+  *why = "eta must be 1, 2, 3 or 4 (got " + std::to_string(eta) + ")";
+  return false;
+}
+
 bool IsValidSmoothing(EtaCase eta, double gamma_tol, double rho_min, std::string* why) {
-  const int e = static_cast<int>(eta);
-  if (e < 1 || e > 4) {
-    *why = "eta must be 1, 2, 3 or 4 (got " + std::to_string(e) + ")";
+  if (!IsValidEtaCase(static_cast<int>(eta), why)) {
+    return false;
   } else if (!(gamma_tol > 0.0 && gamma_tol < 1.0)) {
     *why = "gamma_tol must be in (0, 1)";
   } else if (!(rho_min > 0.0) || !std::isfinite(rho_min)) {

@@ -32,6 +32,10 @@ struct EtaEquation {
 // sqrt((1 - gamma_tol) / m0), which keeps 1 - gamma^2 m0 >= gamma_tol > 0 so (43) is defined.
 double WarmStartGamma(double mean_gr, double gamma_tol);
 
+// Whether `eta` names one of the cases above (1..4); otherwise false with the reason in *why.
+// The one check of the range: the formulations' options and the CLI both ask it.
+bool IsValidEtaCase(int eta, std::string* why);
+
 // Whether the smoothing settings of a formulation are in range: an eta case 1..4, gamma_tol
 // (gamma_ of (37)) in (0, 1) and rho_min (rho_ of (42)) positive; otherwise false with the
 // reason in *why. Every formulation with these settings checks them here.
