@@ -531,3 +531,34 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
 
 }  // namespace
 }  // namespace cb
+
+namespace {
+
+TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
+  const auto dir = TempDir("not_regular");
+  std::filesystem::create_directories(dir / "a-directory");
+  const std::string fifo = (dir / "a-fifo").string();
+  ASSERT_EQ(Capture("mkfifo " + fifo).status, 0);
+  // A mesh path that is a directory.
+  std::ofstream(dir / "mesh-dir.json") << R"({"kind": "plane-stress-q4", "thickness": 0.1,
+      "material": {"E": 1000.0, "nu": 0.25}, "mesh": {"file": "a-directory"}})";
+  struct Case {
+    std::string file;
+    std::string expected;
+  } cases[] = {
+      {"/dev/zero", "/dev/zero: is a device, not a problem file"},
+      {(dir / "a-directory").string(), "is a directory, not a problem file"},
+      {fifo, "is a FIFO, not a problem file"},
+      {(dir / "mesh-dir.json").string(), "is a directory, not a mesh file"},
+  };
+  for (const auto& c : cases) {
+    // `timeout`: reading /dev/zero or a FIFO without a writer would never end.
+    const Outcome o =
+        Capture("timeout 20 " + std::string(CONTACTBENCH_BINARY) + " run --problem-file " + c.file +
+                " --formulation implicit-fb --out " + (dir / "out").string() + " 2>&1");
+    EXPECT_EQ(o.status, 2) << c.file << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.file << "\n" << o.output;
+  }
+}
+
+}  // namespace

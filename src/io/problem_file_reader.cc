@@ -8,6 +8,7 @@
 
 #include "io/directions.h"
 #include "io/gmsh.h"
+#include "io/input_file.h"
 #include "io/json_node.h"
 #include "io/problem_file.h"
 #include "model/complementarity_model.h"
@@ -736,16 +737,9 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
 
 Problem LoadProblemFile(const std::string& path,
                         const std::map<std::string, std::string>& settings) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path, "", "is a directory, not a problem file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the problem file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = ReadInputFile(path, "problem file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return ParseProblemFile(text.str(), path, directory.empty() ? "." : directory, settings);
+  return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);
 }
 
 }  // namespace cb::io
