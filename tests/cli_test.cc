@@ -534,6 +534,23 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
 
 namespace {
 
+TEST(CliTest, ProblemNamesThatAreNotFileSafeAreRefused) {
+  const auto dir = TempDir("names");
+  std::filesystem::create_directories(dir);
+  for (const char* name : {"../../escaped", "a/b", "say \\\"hi\\\"", ".hidden", ""}) {
+    const auto file = dir / "p.json";
+    std::ofstream(file) << R"({"kind": "lcp", "name": ")" << name
+                        << R"(", "M": [[1, 0], [0, 1]], "q": [-1, 1]})";
+    const Outcome o =
+        RunCli("run --problem-file " + file.string() +
+               " --formulation implicit-fb --save-every 1 --out " + (dir / "out").string());
+    EXPECT_EQ(o.status, 2) << name << "\n" << o.output;
+    EXPECT_NE(o.output.find("p.json: /name: "), std::string::npos) << name << "\n" << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.parent_path().parent_path() / "escaped"));
+}
+
 TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
   const auto dir = TempDir("not_regular");
   std::filesystem::create_directories(dir / "a-directory");

@@ -81,6 +81,16 @@ void ReadVersion(const JsonNode& root) {
   }
 }
 
+// A problem's name becomes file names (vtk/NAME.pvd, vtk/NAME_0000.vtu): only characters that
+// keep it one name inside the output directory and need no quoting in a path or in XML.
+bool IsFileSafeName(const std::string& name) {
+  if (name.empty() || name.front() == '.' || name.front() == '-') return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+           c == '_' || c == '+' || c == '-';
+  });
+}
+
 std::string OptionalString(const JsonNode& root, const char* key, const std::string& fallback) {
   auto v = root.Optional(key);
   return v ? v->String() : fallback;
@@ -731,6 +741,13 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
   }
   problem.name = OptionalString(root, "name", std::filesystem::path(file).stem().string());
   if (problem.name.empty()) root.Field("name").Fail("must not be empty");
+  if (!IsFileSafeName(problem.name)) {
+    throw InputError(file, "/name",
+                     "'" + problem.name +
+                         "' cannot name the output files (vtk/NAME.pvd): use letters, digits "
+                         "and ._+- only, not first '.' or '-'" +
+                         (root.Has("name") ? "" : "; the default is the file's name"));
+  }
   problem.units = OptionalString(root, "units", k == "lcp" ? "none" : "consistent units");
   return problem;
 }
