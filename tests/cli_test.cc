@@ -534,6 +534,37 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
 
 namespace {
 
+// Whether every file under `dir` with the suffix ".csv" ends with a line break (or is empty).
+void ExpectOnlyWholeLines(const std::filesystem::path& dir) {
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".csv") continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (!text.empty()) {
+      EXPECT_EQ(text.back(), '\n') << entry.path();
+    }
+  }
+}
+
+TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
+  // A file size limit (unprivileged, inherited by the child) makes the write that crosses it
+  // fail part-way, as a full disk does.
+  const auto dir = TempDir("full_disk");
+  for (const std::string& command :
+       {std::string("run --problem arch-flat --formulation implicit-fb --steps 50"),
+        std::string("compare --problem arch-flat --formulations implicit-fb --steps 50")}) {
+    const auto out = dir / command.substr(0, command.find(' '));
+    const Outcome o = Capture("ulimit -f 10; " + std::string(CONTACTBENCH_BINARY) + " " + command +
+                              " --out " + out.string() + " 2>&1");
+    EXPECT_EQ(o.status, 3) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("cannot write '" + out.string() + "/"), std::string::npos) << o.output;
+    ExpectOnlyWholeLines(out);
+  }
+  // A comparison stopped by a failed write records no outcome for steps it could not write.
+  EXPECT_FALSE(std::filesystem::exists(dir / "compare" / "runs.csv") &&
+               Lines(dir / "compare" / "runs.csv").size() > 1);
+}
+
 TEST(CliTest, ProblemNamesThatAreNotFileSafeAreRefused) {
   const auto dir = TempDir("names");
   std::filesystem::create_directories(dir);

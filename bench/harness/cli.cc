@@ -333,6 +333,10 @@ int Main(int argc, char** argv) {
                 << " --help` describes the options.\n";
     }
     return kExitBadArguments;
+  } catch (const WriteError& e) {
+    std::cerr << "contactbench: " << e.what()
+              << "; the run stopped (the records written before are kept whole)\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "contactbench: error: " << e.what() << "\n";
     return kExitFailure;

@@ -15,6 +15,16 @@ namespace {
 constexpr int kVtkLine = 3;
 constexpr int kVtkQuad = 9;
 
+// Closes `out` (which flushes it) and checks every write: a VTK file cut short is no VTK file,
+// so it is removed rather than kept.
+void CloseOrRemove(std::ofstream& out, const std::string& path) {
+  out.close();
+  if (out) return;
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  throw WriteError(path, "the write failed (disk full?); the file was removed");
+}
+
 }  // namespace
 
 SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
@@ -67,7 +77,7 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
 
   std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  if (!out) throw WriteError(path, "cannot open it");
   out.precision(17);
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -116,7 +126,7 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   for (double r : reaction) out << "          " << r << '\n';
   out << "        </DataArray>\n      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
       << "</VTKFile>\n";
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  CloseOrRemove(out, path);
 }
 
 // The collection, one dataset per saved state in order; the "timestep" is the save index
@@ -126,7 +136,7 @@ void SnapshotWriter::WritePvd() const {
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary);
-    if (!out) throw std::runtime_error("cannot write '" + temporary + "'");
+    if (!out) throw WriteError(temporary, "cannot open it");
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
@@ -136,8 +146,11 @@ void SnapshotWriter::WritePvd() const {
           << saved_[k].lambda << " -->\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
+    CloseOrRemove(out, temporary);
   }
-  std::filesystem::rename(temporary, path);  // atomic: never a half-written collection
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);  // atomic: never a half-written collection
+  if (ec) throw WriteError(path, "cannot rename '" + temporary + "' to it: " + ec.message());
 }
 
 }  // namespace cb::harness
