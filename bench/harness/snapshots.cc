@@ -15,6 +15,33 @@ namespace {
 constexpr int kVtkLine = 3;
 constexpr int kVtkQuad = 9;
 
+// Text in an XML attribute or comment.
+std::string XmlEscaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 // Closes `out` (which flushes it) and checks every write: a VTK file cut short is no VTK file,
 // so it is removed rather than kept.
 void CloseOrRemove(std::ofstream& out, const std::string& path) {
@@ -141,9 +168,9 @@ void SnapshotWriter::WritePvd() const {
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
     for (std::size_t k = 0; k < saved_.size(); ++k) {
-      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\"" << saved_[k].file
-          << "\"/>  <!-- step " << saved_[k].step << ", " << saved_[k].label << ", lambda "
-          << saved_[k].lambda << " -->\n";
+      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\""
+          << XmlEscaped(saved_[k].file) << "\"/>  <!-- step " << saved_[k].step << ", "
+          << saved_[k].label << ", lambda " << saved_[k].lambda << " -->\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
     CloseOrRemove(out, temporary);
