@@ -565,6 +565,37 @@ TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
                Lines(dir / "compare" / "runs.csv").size() > 1);
 }
 
+TEST(CliTest, AnEarlierRunsRecordsAreRefusedUnlessOverwritten) {
+  const auto dir = TempDir("overwrite");
+  const std::string out = " --out " + dir.string();
+  const Outcome first =
+      RunCli("run --problem two-bar --formulation implicit-fb --save-every 50" + out);
+  ASSERT_EQ(first.status, 0) << first.output;
+  ASSERT_TRUE(std::filesystem::exists(dir / "contacts.csv"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "vtk"));
+  std::ofstream(dir / "notes.txt") << "mine";
+  const std::string lcp = "run --problem-file " + (kExamples / "lcp-dense-2x2.json").string() +
+                          " --formulation implicit-fb" + out;
+  const Outcome refused = RunCli(lcp);
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--overwrite"), std::string::npos) << refused.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "contacts.csv"));  // untouched
+  const Outcome replaced = RunCli(lcp + " --overwrite");
+  ASSERT_EQ(replaced.status, 0) << replaced.output;
+  // Only the new run's records: an LCP has no contacts.csv and no VTK files.
+  EXPECT_FALSE(std::filesystem::exists(dir / "contacts.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "vtk"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cells.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "notes.txt"));  // not a record: kept
+  EXPECT_EQ(Lines(dir / "steps.csv")[1].rfind("lcp-dense-2x2,", 0), 0u);
+  // A directory holding only other files is not refused.
+  const auto other = TempDir("overwrite_other");
+  std::filesystem::create_directories(other);
+  std::ofstream(other / "notes.txt") << "mine";
+  EXPECT_EQ(
+      RunCli("run --problem two-bar --formulation implicit-fb --out " + other.string()).status, 0);
+}
+
 TEST(CliTest, ProblemNamesThatAreNotFileSafeAreRefused) {
   const auto dir = TempDir("names");
   std::filesystem::create_directories(dir);

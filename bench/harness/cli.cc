@@ -12,6 +12,7 @@
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
 #include "harness/options.h"
+#include "harness/output_directory.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
 #include "harness/snapshots.h"
@@ -129,6 +130,8 @@ int Run(const RunArguments& a) {
     throw UsageError(e.what());
   }
   PrepareOutput(a.out);
+  const OutputLock lock(a.out);
+  ClaimOutput(a.out, a.overwrite);
   const PathOptions options = MakePathOptions(a, problem);
   std::string refusal;
   if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
@@ -188,6 +191,8 @@ int Compare(const RunArguments& a) {
     throw UsageError(e.what());
   }
   PrepareOutput(a.out);
+  const OutputLock lock(a.out);
+  ClaimOutput(a.out, a.overwrite);
   PathOptions options = MakePathOptions(a, problem);
   const StepProblem first = FirstStep(problem, options);
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
