@@ -10,6 +10,7 @@
 #include <functional>
 #include <iterator>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
@@ -534,6 +535,8 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
 
 namespace {
 
+// --- the records are never lost, truncated or mixed ------------------------------------------
+
 // Whether every file under `dir` with the suffix ".csv" ends with a line break (or is empty).
 void ExpectOnlyWholeLines(const std::filesystem::path& dir) {
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
@@ -544,6 +547,11 @@ void ExpectOnlyWholeLines(const std::filesystem::path& dir) {
       EXPECT_EQ(text.back(), '\n') << entry.path();
     }
   }
+}
+
+nlohmann::json RunJsonOf(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "run.json");
+  return nlohmann::json::parse(in);
 }
 
 TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
@@ -559,6 +567,10 @@ TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
     EXPECT_EQ(o.status, 3) << command << "\n" << o.output;
     EXPECT_NE(o.output.find("cannot write '" + out.string() + "/"), std::string::npos) << o.output;
     ExpectOnlyWholeLines(out);
+    // run.json is small enough to be written under the limit, and says why the run stopped.
+    const auto run = RunJsonOf(out);
+    EXPECT_EQ(run.at("exit_status"), 3);
+    EXPECT_NE(run.at("reason").get<std::string>().find("cannot write"), std::string::npos);
   }
   // A comparison stopped by a failed write records no outcome for steps it could not write.
   EXPECT_FALSE(std::filesystem::exists(dir / "compare" / "runs.csv") &&
@@ -594,6 +606,58 @@ TEST(CliTest, AnEarlierRunsRecordsAreRefusedUnlessOverwritten) {
   std::ofstream(other / "notes.txt") << "mine";
   EXPECT_EQ(
       RunCli("run --problem two-bar --formulation implicit-fb --out " + other.string()).status, 0);
+}
+
+TEST(CliTest, RunAndCompareWriteRunJson) {
+  const auto dir = TempDir("run_json");
+  const Outcome r = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 7 --set height=0.4 "
+      "--time-limit 60 --out " +
+      (dir / "run").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto run = RunJsonOf(dir / "run");
+  EXPECT_FALSE(run.at("version").get<std::string>().empty());
+  EXPECT_TRUE(run.contains("commit"));
+  EXPECT_EQ(run.at("command"), "run");
+  EXPECT_EQ(run.at("command_line").at(1), "run");
+  EXPECT_EQ(run.at("command_line").back(), (dir / "run").string());
+  EXPECT_EQ(run.at("problem"), "two-bar");
+  EXPECT_EQ(run.at("problem_source"), "--problem two-bar");
+  EXPECT_EQ(run.at("settings").at("height"), "0.4");
+  EXPECT_EQ(run.at("formulations"), nlohmann::json::array({"implicit-fb"}));
+  EXPECT_EQ(run.at("starts"), nlohmann::json::array({"warm"}));
+  EXPECT_EQ(run.at("tolerance"), 1e-8);
+  EXPECT_EQ(run.at("time_limit_s"), 60.0);
+  EXPECT_EQ(run.at("exit_status"), 0);
+  EXPECT_EQ(run.at("counts").at("accepted_steps"), 7);
+  EXPECT_EQ(run.at("counts").at("attempts"),
+            static_cast<int>(Lines(dir / "run" / "steps.csv").size()) - 1);
+  EXPECT_GE(run.at("wall_time_s").get<double>(), 0.0);
+  EXPECT_EQ(run.at("started_at").get<std::string>().size(), 20u);  // 2026-01-02T03:04:05Z
+
+  // A failed run says so, with the path's reason.
+  const Outcome f = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 5 --tol 1e-300 --max-cutbacks 1 "
+      "--out " +
+      (dir / "failed").string());
+  ASSERT_EQ(f.status, 3) << f.output;
+  const auto failed = RunJsonOf(dir / "failed");
+  EXPECT_EQ(failed.at("exit_status"), 3);
+  EXPECT_FALSE(failed.at("reason").get<std::string>().empty());
+
+  const Outcome c = RunCli(
+      "compare --problem two-bar --formulations implicit-fb,nonsmooth-fb --starts warm,cold "
+      "--steps 5 --out " +
+      (dir / "compare").string());
+  ASSERT_EQ(c.status, 0) << c.output;
+  const auto compare = RunJsonOf(dir / "compare");
+  EXPECT_EQ(compare.at("command"), "compare");
+  EXPECT_EQ(compare.at("formulations"), nlohmann::json::array({"implicit-fb", "nonsmooth-fb"}));
+  EXPECT_EQ(compare.at("starts"), nlohmann::json::array({"warm", "cold"}));
+  EXPECT_EQ(compare.at("mode"), "replay");
+  EXPECT_EQ(compare.at("reference"), "implicit-fb");
+  EXPECT_EQ(compare.at("counts").at("runs"), 4);
+  EXPECT_EQ(compare.at("exit_status"), 0);
 }
 
 TEST(CliTest, ProblemNamesThatAreNotFileSafeAreRefused) {

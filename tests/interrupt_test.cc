@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -220,6 +221,12 @@ TEST_P(InterruptTest, StopsWithStatus4SayingWhereAndKeepsWholeRecords) {
   ExpectWholeRecords(dir / "solution.csv", solution);
   ASSERT_GT(solution.records.size(), 1u);
   EXPECT_EQ(std::stoi(solution.records[1][0]), accepted_steps);
+  // run.json says how it ended, with the counts of the records.
+  const auto run = nlohmann::json::parse(ReadText(dir / "run.json"));
+  EXPECT_EQ(run.at("exit_status"), 4);
+  EXPECT_NE(run.at("reason").get<std::string>().find("stopped by the caller"), std::string::npos);
+  EXPECT_EQ(run.at("counts").at("accepted_steps"), accepted_steps);
+  EXPECT_EQ(run.at("counts").at("attempts"), static_cast<int>(steps.records.size()) - 1);
   std::filesystem::remove_all(dir);
 }
 
