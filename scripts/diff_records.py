@@ -2,13 +2,15 @@
 """Compares two record directories (contactbench run/compare --out) file by file.
 
 A restructuring or a speed change must leave the records bit-identical: every CSV cell the same
-text, except the columns that measure wall time (their names contain "time"), and every other
-file (VTK, .pvd) byte for byte. Prints each difference (file, row, column, both values) and
+text, except the columns that measure wall time (their names contain "time"), run.json field by
+field except what names the build, the command line, the clock or the wall time, and every
+other file (VTK, .pvd) byte for byte. Prints each difference (file, row, column, both values) and
 exits 1 when there is any, 0 when the two directories hold the same records.
 
 Usage: scripts/diff_records.py OLD_DIR NEW_DIR
 """
 import csv
+import json
 import pathlib
 import sys
 
@@ -38,6 +40,18 @@ def diff_csv(old, new, label, out):
                     return
 
 
+# run.json's fields that differ between two runs of the same records: the build, the command
+# line (it names the output directory), when it started and how long it took.
+RUN_JSON_UNCOMPARED = {"version", "commit", "command_line", "started_at", "wall_time_s"}
+
+
+def diff_run_json(old, new, label, out):
+    a, b = json.loads(old.read_text()), json.loads(new.read_text())
+    for key in sorted((set(a) | set(b)) - RUN_JSON_UNCOMPARED):
+        if a.get(key) != b.get(key):
+            out.append(f"{label}: {key}: {a.get(key)!r} -> {b.get(key)!r}")
+
+
 def main(argv):
     if len(argv) != 3:
         print(__doc__.strip().splitlines()[-1], file=sys.stderr)
@@ -55,6 +69,8 @@ def main(argv):
         a, b = old_dir / rel, new_dir / rel
         if rel.suffix == ".csv":
             diff_csv(a, b, str(rel), out)
+        elif rel.name == "run.json":
+            diff_run_json(a, b, str(rel), out)
         elif a.read_bytes() != b.read_bytes():
             out.append(f"{rel}: bytes differ")
     for line in out[:200]:

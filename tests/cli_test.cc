@@ -10,6 +10,7 @@
 #include <functional>
 #include <iterator>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
@@ -531,3 +532,176 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
 
 }  // namespace
 }  // namespace cb
+
+namespace {
+
+// --- the records are never lost, truncated or mixed ------------------------------------------
+
+// Whether every file under `dir` with the suffix ".csv" ends with a line break (or is empty).
+void ExpectOnlyWholeLines(const std::filesystem::path& dir) {
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".csv") continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (!text.empty()) {
+      EXPECT_EQ(text.back(), '\n') << entry.path();
+    }
+  }
+}
+
+nlohmann::json RunJsonOf(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "run.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
+  // A file size limit (unprivileged, inherited by the child) makes the write that crosses it
+  // fail part-way, as a full disk does.
+  const auto dir = TempDir("full_disk");
+  for (const std::string& command :
+       {std::string("run --problem arch-flat --formulation implicit-fb --steps 50"),
+        std::string("compare --problem arch-flat --formulations implicit-fb --steps 50")}) {
+    const auto out = dir / command.substr(0, command.find(' '));
+    const Outcome o = Capture("ulimit -f 10; " + std::string(CONTACTBENCH_BINARY) + " " + command +
+                              " --out " + out.string() + " 2>&1");
+    EXPECT_EQ(o.status, 3) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("cannot write '" + out.string() + "/"), std::string::npos) << o.output;
+    ExpectOnlyWholeLines(out);
+    // run.json is small enough to be written under the limit, and says why the run stopped.
+    const auto run = RunJsonOf(out);
+    EXPECT_EQ(run.at("exit_status"), 3);
+    EXPECT_NE(run.at("reason").get<std::string>().find("cannot write"), std::string::npos);
+  }
+  // A comparison stopped by a failed write records no outcome for steps it could not write.
+  EXPECT_FALSE(std::filesystem::exists(dir / "compare" / "runs.csv") &&
+               Lines(dir / "compare" / "runs.csv").size() > 1);
+}
+
+TEST(CliTest, AnEarlierRunsRecordsAreRefusedUnlessOverwritten) {
+  const auto dir = TempDir("overwrite");
+  const std::string out = " --out " + dir.string();
+  const Outcome first =
+      RunCli("run --problem two-bar --formulation implicit-fb --save-every 50" + out);
+  ASSERT_EQ(first.status, 0) << first.output;
+  ASSERT_TRUE(std::filesystem::exists(dir / "contacts.csv"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "vtk"));
+  std::ofstream(dir / "notes.txt") << "mine";
+  const std::string lcp = "run --problem-file " + (kExamples / "lcp-dense-2x2.json").string() +
+                          " --formulation implicit-fb" + out;
+  const Outcome refused = RunCli(lcp);
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--overwrite"), std::string::npos) << refused.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "contacts.csv"));  // untouched
+  const Outcome replaced = RunCli(lcp + " --overwrite");
+  ASSERT_EQ(replaced.status, 0) << replaced.output;
+  // Only the new run's records: an LCP has no contacts.csv and no VTK files.
+  EXPECT_FALSE(std::filesystem::exists(dir / "contacts.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "vtk"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cells.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "notes.txt"));  // not a record: kept
+  EXPECT_EQ(Lines(dir / "steps.csv")[1].rfind("lcp-dense-2x2,", 0), 0u);
+  // A directory holding only other files is not refused.
+  const auto other = TempDir("overwrite_other");
+  std::filesystem::create_directories(other);
+  std::ofstream(other / "notes.txt") << "mine";
+  EXPECT_EQ(
+      RunCli("run --problem two-bar --formulation implicit-fb --out " + other.string()).status, 0);
+}
+
+TEST(CliTest, RunAndCompareWriteRunJson) {
+  const auto dir = TempDir("run_json");
+  const Outcome r = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 7 --set height=0.4 "
+      "--time-limit 60 --out " +
+      (dir / "run").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto run = RunJsonOf(dir / "run");
+  EXPECT_FALSE(run.at("version").get<std::string>().empty());
+  EXPECT_TRUE(run.contains("commit"));
+  EXPECT_EQ(run.at("command"), "run");
+  EXPECT_EQ(run.at("command_line").at(1), "run");
+  EXPECT_EQ(run.at("command_line").back(), (dir / "run").string());
+  EXPECT_EQ(run.at("problem"), "two-bar");
+  EXPECT_EQ(run.at("problem_source"), "--problem two-bar");
+  EXPECT_EQ(run.at("settings").at("height"), "0.4");
+  EXPECT_EQ(run.at("formulations"), nlohmann::json::array({"implicit-fb"}));
+  EXPECT_EQ(run.at("starts"), nlohmann::json::array({"warm"}));
+  EXPECT_EQ(run.at("tolerance"), 1e-8);
+  EXPECT_EQ(run.at("time_limit_s"), 60.0);
+  EXPECT_EQ(run.at("exit_status"), 0);
+  EXPECT_EQ(run.at("counts").at("accepted_steps"), 7);
+  EXPECT_EQ(run.at("counts").at("attempts"),
+            static_cast<int>(Lines(dir / "run" / "steps.csv").size()) - 1);
+  EXPECT_GE(run.at("wall_time_s").get<double>(), 0.0);
+  EXPECT_EQ(run.at("started_at").get<std::string>().size(), 20u);  // 2026-01-02T03:04:05Z
+
+  // A failed run says so, with the path's reason.
+  const Outcome f = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 5 --tol 1e-300 --max-cutbacks 1 "
+      "--out " +
+      (dir / "failed").string());
+  ASSERT_EQ(f.status, 3) << f.output;
+  const auto failed = RunJsonOf(dir / "failed");
+  EXPECT_EQ(failed.at("exit_status"), 3);
+  EXPECT_FALSE(failed.at("reason").get<std::string>().empty());
+
+  const Outcome c = RunCli(
+      "compare --problem two-bar --formulations implicit-fb,nonsmooth-fb --starts warm,cold "
+      "--steps 5 --out " +
+      (dir / "compare").string());
+  ASSERT_EQ(c.status, 0) << c.output;
+  const auto compare = RunJsonOf(dir / "compare");
+  EXPECT_EQ(compare.at("command"), "compare");
+  EXPECT_EQ(compare.at("formulations"), nlohmann::json::array({"implicit-fb", "nonsmooth-fb"}));
+  EXPECT_EQ(compare.at("starts"), nlohmann::json::array({"warm", "cold"}));
+  EXPECT_EQ(compare.at("mode"), "replay");
+  EXPECT_EQ(compare.at("reference"), "implicit-fb");
+  EXPECT_EQ(compare.at("counts").at("runs"), 4);
+  EXPECT_EQ(compare.at("exit_status"), 0);
+}
+
+TEST(CliTest, ProblemNamesThatAreNotFileSafeAreRefused) {
+  const auto dir = TempDir("names");
+  std::filesystem::create_directories(dir);
+  for (const char* name : {"../../escaped", "a/b", "say \\\"hi\\\"", ".hidden", ""}) {
+    const auto file = dir / "p.json";
+    std::ofstream(file) << R"({"kind": "lcp", "name": ")" << name
+                        << R"(", "M": [[1, 0], [0, 1]], "q": [-1, 1]})";
+    const Outcome o =
+        RunCli("run --problem-file " + file.string() +
+               " --formulation implicit-fb --save-every 1 --out " + (dir / "out").string());
+    EXPECT_EQ(o.status, 2) << name << "\n" << o.output;
+    EXPECT_NE(o.output.find("p.json: /name: "), std::string::npos) << name << "\n" << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.parent_path().parent_path() / "escaped"));
+}
+
+TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
+  const auto dir = TempDir("not_regular");
+  std::filesystem::create_directories(dir / "a-directory");
+  const std::string fifo = (dir / "a-fifo").string();
+  ASSERT_EQ(Capture("mkfifo " + fifo).status, 0);
+  // A mesh path that is a directory.
+  std::ofstream(dir / "mesh-dir.json") << R"({"kind": "plane-stress-q4", "thickness": 0.1,
+      "material": {"E": 1000.0, "nu": 0.25}, "mesh": {"file": "a-directory"}})";
+  struct Case {
+    std::string file;
+    std::string expected;
+  } cases[] = {
+      {"/dev/zero", "/dev/zero: is a device, not a problem file"},
+      {(dir / "a-directory").string(), "is a directory, not a problem file"},
+      {fifo, "is a FIFO, not a problem file"},
+      {(dir / "mesh-dir.json").string(), "is a directory, not a mesh file"},
+  };
+  for (const auto& c : cases) {
+    // `timeout`: reading /dev/zero or a FIFO without a writer would never end.
+    const Outcome o =
+        Capture("timeout 20 " + std::string(CONTACTBENCH_BINARY) + " run --problem-file " + c.file +
+                " --formulation implicit-fb --out " + (dir / "out").string() + " 2>&1");
+    EXPECT_EQ(o.status, 2) << c.file << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.file << "\n" << o.output;
+  }
+}
+
+}  // namespace

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -220,6 +221,12 @@ TEST_P(InterruptTest, StopsWithStatus4SayingWhereAndKeepsWholeRecords) {
   ExpectWholeRecords(dir / "solution.csv", solution);
   ASSERT_GT(solution.records.size(), 1u);
   EXPECT_EQ(std::stoi(solution.records[1][0]), accepted_steps);
+  // run.json says how it ended, with the counts of the records.
+  const auto run = nlohmann::json::parse(ReadText(dir / "run.json"));
+  EXPECT_EQ(run.at("exit_status"), 4);
+  EXPECT_NE(run.at("reason").get<std::string>().find("stopped by the caller"), std::string::npos);
+  EXPECT_EQ(run.at("counts").at("accepted_steps"), accepted_steps);
+  EXPECT_EQ(run.at("counts").at("attempts"), static_cast<int>(steps.records.size()) - 1);
   std::filesystem::remove_all(dir);
 }
 
@@ -244,6 +251,39 @@ TEST(InterruptTest, CompareStopsWithStatus4AndWholeRecords) {
   EXPECT_NE(ReadText(log).find("stopped by the caller"), std::string::npos) << ReadText(log);
   for (const char* file : {"steps.csv", "iterations.csv", "kinks.csv", "runs.csv"}) {
     ExpectWholeRecords(dir / file, ReadCsv(dir / file));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A second run into the directory of a running one is refused before it writes anything, and
+// names the first one's pid; the first one's records stay its own.
+TEST(InterruptTest, ASecondRunIntoTheSameDirectoryIsRefused) {
+  const auto dir = TempDir("second");
+  auto args = kLongRun;
+  args.insert(args.end(), {"--out", (dir / "out").string()});
+  const pid_t first = Start(args, dir / "first.txt");
+  ASSERT_GT(first, 0);
+  ASSERT_TRUE(WaitForLines(first, dir / "out" / "steps.csv", 11)) << ReadText(dir / "first.txt");
+  const pid_t second = Start({"compare", "--problem", "two-bar", "--formulations", "implicit-fb",
+                              "--overwrite", "--out", (dir / "out").string()},
+                             dir / "second.txt");
+  ASSERT_GT(second, 0);
+  const int raw = Wait(second);
+  const std::string said = ReadText(dir / "second.txt");
+  ASSERT_TRUE(WIFEXITED(raw)) << raw << "\n" << said;
+  EXPECT_EQ(WEXITSTATUS(raw), 2) << said;
+  EXPECT_NE(said.find("pid " + std::to_string(first)), std::string::npos) << said;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "runs.csv"));
+  ASSERT_EQ(kill(first, SIGTERM), 0);
+  const int first_raw = Wait(first);
+  ASSERT_TRUE(WIFEXITED(first_raw)) << ReadText(dir / "first.txt");
+  EXPECT_EQ(WEXITSTATUS(first_raw), 4) << ReadText(dir / "first.txt");
+  // Each steps.csv row is the first run's: its problem, steps 1, 2, ... in order.
+  const Csv steps = ReadCsv(dir / "out" / "steps.csv");
+  ExpectWholeRecords(dir / "out" / "steps.csv", steps);
+  auto col = Columns(steps.records.front());
+  for (std::size_t k = 1; k < steps.records.size(); ++k) {
+    EXPECT_EQ(steps.records[k][col["problem"]], "arch-curved") << k;
   }
   std::filesystem::remove_all(dir);
 }

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -12,8 +13,10 @@
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
 #include "harness/options.h"
+#include "harness/output_directory.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
+#include "harness/run_json.h"
 #include "harness/snapshots.h"
 #include "io/problem_file.h"
 #include "path/near_start.h"
@@ -120,54 +123,77 @@ Problem LoadProblem(const RunArguments& a) {
   }
 }
 
-int Run(const RunArguments& a) {
-  Problem problem = LoadProblem(a);
-  std::unique_ptr<Formulation> formulation;
-  try {
-    formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  PrepareOutput(a.out);
-  const PathOptions options = MakePathOptions(a, problem);
-  std::string refusal;
-  if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
-    throw UsageError(refusal + " (problem '" + problem.name + "')");
-  }
+// What run.json records of the arguments, before anything runs.
+void DescribeArguments(const RunArguments& a, const Problem& problem, RunJson* record) {
+  record->problem = problem.name;
+  record->problem_source =
+      a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
+  record->settings = a.settings;
+  record->tolerance = a.tolerance;
+  record->time_limit_s = a.time_limit;
+}
 
+// Runs `body` in the output directory of --out, prepared, locked against a second run and
+// claimed (an earlier run's records refused, or removed with --overwrite), and ends with
+// run.json whatever ends the command: a status, a failure or a failed write (rethrown for the
+// message). `body` returns the exit status and sets the reason.
+int InOutputDirectory(const RunArguments& a, RunJson* record,
+                      const std::function<int(std::string* reason)>& body) {
+  PrepareOutput(a.out);
+  const OutputLock lock(a.out);
+  ClaimOutput(a.out, a.overwrite);
+  std::string reason;
+  int status = kExitFailure;
+  try {
+    status = body(&reason);
+  } catch (const UsageError& e) {
+    WriteRunJson(a.out, *record, kExitBadArguments, e.what());
+    throw;
+  } catch (const std::exception& e) {
+    WriteRunJson(a.out, *record, kExitFailure, e.what());
+    throw;
+  }
+  WriteRunJson(a.out, *record, status, reason);
+  return status;
+}
+
+// The run itself, in its claimed output directory.
+int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
+             const PathOptions& options, RunJson* record, std::string* reason) {
   // --start near: the reference formulation's solution, perturbed (near_start.h).
   std::optional<State> near;
   if (a.start_near) {
-    if (problem.loading != LoadingKind::kFixedLoad) {
-      throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
-                       "' is traced by arc length");
-    }
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
     std::string why;
     near.emplace();
     if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model), problem.load,
                            *reference, options, a.near_offset, &*near, &why)) {
-      std::fprintf(stderr, "contactbench: --start near: the reference solve failed (%s)\n",
-                   why.c_str());
+      *reason = "--start near: the reference solve failed (" + why + ")";
+      std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
       return kExitFailure;
     }
   }
   RecordFiles files(a.out);
   RunRecorder recorder(&files, problem,
-                       {problem.name, formulation->name(), formulation->solver(),
-                        formulation->settings(), a.start_near ? "near" : ToString(a.start), "run"},
+                       {problem.name, formulation.name(), formulation.solver(),
+                        formulation.settings(), a.start_near ? "near" : ToString(a.start), "run"},
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
   WriteParameters(a.out, problem);
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary =
-      Trace(problem, *formulation, options, &observers, near ? &*near : nullptr);
+      Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
   WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
   snapshots.Save(summary.final_state, summary.accepted_steps, "final");
+  record->runs = 1;
+  record->attempts = summary.attempts;
+  record->accepted_steps = summary.accepted_steps;
+  record->kinks = summary.kinks;
+  *reason = summary.message;
   std::fprintf(stderr,
                "%s %s: %s (%d accepted steps, %d attempts, %d kinks, %d limit points, "
                "%d bifurcation points, %d branch switches) -> %s\n",
-               problem.name.c_str(), formulation->name().c_str(), summary.message.c_str(),
+               problem.name.c_str(), formulation.name().c_str(), summary.message.c_str(),
                summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
                summary.bifurcations, summary.branch_switches, a.out.c_str());
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
@@ -175,19 +201,35 @@ int Run(const RunArguments& a) {
   return kExitOk;
 }
 
-int Compare(const RunArguments& a) {
+int Run(const RunArguments& a, RunJson* record) {
   Problem problem = LoadProblem(a);
-  std::vector<std::unique_ptr<Formulation>> formulations;
-  std::unique_ptr<Formulation> reference;
+  std::unique_ptr<Formulation> formulation;
   try {
-    for (const auto& name : a.formulations) {
-      formulations.push_back(MakeFormulation(name, ConfigFor(a, name)));
-    }
-    reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
+    formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  PrepareOutput(a.out);
+  const PathOptions options = MakePathOptions(a, problem);
+  std::string refusal;
+  if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
+    throw UsageError(refusal + " (problem '" + problem.name + "')");
+  }
+  if (a.start_near && problem.loading != LoadingKind::kFixedLoad) {
+    throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
+                     "' is traced by arc length");
+  }
+  DescribeArguments(a, problem, record);
+  record->formulations = {formulation->name()};
+  record->starts = {a.start_near ? "near" : ToString(a.start)};
+  return InOutputDirectory(a, record, [&](std::string* reason) {
+    return TraceRun(a, problem, *formulation, options, record, reason);
+  });
+}
+
+// The comparison itself, in its claimed output directory.
+int CompareRuns(const RunArguments& a, const Problem& problem,
+                const std::vector<std::unique_ptr<Formulation>>& formulations,
+                Formulation* reference, RunJson* record, std::string* reason) {
   PathOptions options = MakePathOptions(a, problem);
   const StepProblem first = FirstStep(problem, options);
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
@@ -217,7 +259,8 @@ int Compare(const RunArguments& a) {
     const PathSummary s = Trace(problem, *reference, options, &tee);
     std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
     if (path.steps.empty()) {
-      std::fprintf(stderr, "contactbench: the reference path has no verified step to replay\n");
+      *reason = "the reference path has no verified step to replay (" + s.message + ")";
+      std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
       return kExitFailure;
     }
   }
@@ -244,11 +287,40 @@ int Compare(const RunArguments& a) {
                              : Trace(problem, *formulation, run_options, &recorder);
       runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
                   a.time_limit, a.tolerance});
-      if (s.status == Status::kStoppedByCaller) return kExitInterrupted;
+      ++record->runs;
+      record->attempts += recorder.attempts();
+      record->accepted_steps += recorder.accepted();
+      if (s.status == Status::kStoppedByCaller) {
+        *reason = formulation->name() + ": " + s.message;
+        return kExitInterrupted;
+      }
     }
   }
+  *reason = "every formulation was run (runs.csv holds each one's outcome)";
   std::fprintf(stderr, "compare: records in %s\n", a.out.c_str());
   return kExitOk;
+}
+
+int Compare(const RunArguments& a, RunJson* record) {
+  Problem problem = LoadProblem(a);
+  std::vector<std::unique_ptr<Formulation>> formulations;
+  std::unique_ptr<Formulation> reference;
+  try {
+    for (const auto& name : a.formulations) {
+      formulations.push_back(MakeFormulation(name, ConfigFor(a, name)));
+    }
+    reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  DescribeArguments(a, problem, record);
+  for (const auto& f : formulations) record->formulations.push_back(f->name());
+  for (StartKind start : a.starts) record->starts.push_back(ToString(start));
+  record->mode = a.mode;
+  if (a.mode == "replay") record->reference = reference->name();
+  return InOutputDirectory(a, record, [&](std::string* reason) {
+    return CompareRuns(a, problem, formulations, reference.get(), record, reason);
+  });
 }
 
 // Writes the problem as a problem file.
@@ -281,14 +353,14 @@ int Schema() {
   return kExitOk;
 }
 
-int Execute(Command command, const RunArguments& a) {
+int Execute(Command command, const RunArguments& a, RunJson* record) {
   switch (command) {
     case kList:
       return List();
     case kRun:
-      return Run(a);
+      return Run(a, record);
     case kCompare:
-      return Compare(a);
+      return Compare(a, record);
     case kExport:
       return Export(a);
     case kSchema:
@@ -323,7 +395,10 @@ int Main(int argc, char** argv) {
       std::cout << CommandHelp(*command);
       return kExitOk;
     }
-    return Execute(command->command, a);
+    RunJson record;
+    record.command_line.assign(argv, argv + argc);
+    record.command = command->name;
+    return Execute(command->command, a, &record);
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n";
     if (command == nullptr) {
@@ -333,6 +408,10 @@ int Main(int argc, char** argv) {
                 << " --help` describes the options.\n";
     }
     return kExitBadArguments;
+  } catch (const WriteError& e) {
+    std::cerr << "contactbench: " << e.what()
+              << "; the run stopped (the records written before are kept whole)\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "contactbench: error: " << e.what() << "\n";
     return kExitFailure;

@@ -140,6 +140,10 @@ std::vector<Option> MakeOptions() {
       {"--out", "DIR", kPathCommands, Need::kRequired, false,
        "the directory of the records (created if missing; docs/records.md)", nullptr,
        [](O, S v, A* a) { a->out = v; }},
+      {"--overwrite", "", kPathCommands, Need::kOptional, false,
+       "replace the records of an earlier run in --out (removes every record file and vtk/ "
+       "first); without it such a directory is refused",
+       nullptr, [](O, S, A* a) { a->overwrite = true; }},
       {"--out", "F.json", kExport, Need::kRequired, false, "the problem file to write", nullptr,
        [](O, S v, A* a) { a->out = v; }},
       {"--solver", "NAME", kPathCommands, Need::kOptional, false,

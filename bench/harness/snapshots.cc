@@ -15,6 +15,43 @@ namespace {
 constexpr int kVtkLine = 3;
 constexpr int kVtkQuad = 9;
 
+// Text in an XML attribute or comment.
+std::string XmlEscaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// Closes `out` (which flushes it) and checks every write: a VTK file cut short is no VTK file,
+// so it is removed rather than kept.
+void CloseOrRemove(std::ofstream& out, const std::string& path) {
+  out.close();
+  if (out) return;
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  throw WriteError(path, "the write failed (disk full?); the file was removed");
+}
+
 }  // namespace
 
 SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
@@ -67,7 +104,7 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
 
   std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  if (!out) throw WriteError(path, "cannot open it");
   out.precision(17);
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -116,7 +153,7 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   for (double r : reaction) out << "          " << r << '\n';
   out << "        </DataArray>\n      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
       << "</VTKFile>\n";
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  CloseOrRemove(out, path);
 }
 
 // The collection, one dataset per saved state in order; the "timestep" is the save index
@@ -126,18 +163,21 @@ void SnapshotWriter::WritePvd() const {
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary);
-    if (!out) throw std::runtime_error("cannot write '" + temporary + "'");
+    if (!out) throw WriteError(temporary, "cannot open it");
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
     for (std::size_t k = 0; k < saved_.size(); ++k) {
-      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\"" << saved_[k].file
-          << "\"/>  <!-- step " << saved_[k].step << ", " << saved_[k].label << ", lambda "
-          << saved_[k].lambda << " -->\n";
+      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\""
+          << XmlEscaped(saved_[k].file) << "\"/>  <!-- step " << saved_[k].step << ", "
+          << saved_[k].label << ", lambda " << saved_[k].lambda << " -->\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
+    CloseOrRemove(out, temporary);
   }
-  std::filesystem::rename(temporary, path);  // atomic: never a half-written collection
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);  // atomic: never a half-written collection
+  if (ec) throw WriteError(path, "cannot rename '" + temporary + "' to it: " + ec.message());
 }
 
 }  // namespace cb::harness

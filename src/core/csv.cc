@@ -1,7 +1,12 @@
 #include "core/csv.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace cb {
@@ -33,15 +38,20 @@ std::string Quote(std::string_view text) {
 
 CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
     : path_(path), columns_(std::move(columns)) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (file_ == nullptr) throw std::runtime_error("cannot open '" + path + "' for writing");
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error("cannot open '" + path + "' for writing");
   Row header;
   for (const auto& c : columns_) header << c;
-  Write(header);
+  try {
+    Write(header);
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
 }
 
 CsvWriter::~CsvWriter() {
-  if (file_ != nullptr) std::fclose(file_);
+  if (fd_ >= 0) ::close(fd_);
 }
 
 CsvWriter::Row& CsvWriter::Row::operator<<(std::string_view text) {
@@ -84,9 +94,23 @@ void CsvWriter::Write(const Row& row) {
     line += row.fields_[i];
   }
   line += '\n';
-  // One fwrite of a whole line, then a flush: an interrupted run leaves only whole lines.
-  std::fwrite(line.data(), 1, line.size(), file_);
-  std::fflush(file_);
+  // Unbuffered writes of a whole line: an interrupted run leaves only whole lines, and a write
+  // that fails part-way is undone here rather than by a later flush of a buffer.
+  std::size_t written = 0;
+  while (written < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + written, line.size() - written);
+    if (n > 0) {
+      written += static_cast<std::size_t>(n);
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      const std::string reason = n < 0 ? std::strerror(errno) : "short write";
+      // Best effort: a device (/dev/full) cannot be truncated and holds nothing anyway.
+      if (::ftruncate(fd_, whole_lines_bytes_) == 0) ::lseek(fd_, whole_lines_bytes_, SEEK_SET);
+      throw WriteError(path_, reason);
+    }
+  }
+  whole_lines_bytes_ += static_cast<long long>(line.size());
 }
 
 }  // namespace cb

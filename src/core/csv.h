@@ -1,8 +1,10 @@
 // Long-format CSV records, written and flushed row by row so that a run that stops early
-// keeps every complete line (docs/architecture.md, house rule 7).
+// keeps every complete line (docs/architecture.md, house rule 7). A failed or short write (a
+// full disk, a file size limit) cuts the file back to its last whole line and throws
+// WriteError: a truncated number still parses, so a half line must never stay.
 #pragma once
 
-#include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,10 +14,22 @@ namespace cb {
 // Formats a double in the shortest form that reads back to the same value ("nan", "inf").
 std::string FormatDouble(double value);
 
+// A record file could not be written completely; `path()` names it. The file holds only whole
+// lines (or nothing).
+class WriteError : public std::runtime_error {
+ public:
+  WriteError(const std::string& path, const std::string& reason)
+      : std::runtime_error("cannot write '" + path + "': " + reason), path_(path) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
 class CsvWriter {
  public:
   // Opens `path` for writing and writes the header. Throws std::runtime_error naming the path
-  // when the file cannot be opened.
+  // when the file cannot be opened, WriteError when the header cannot be written.
   CsvWriter(const std::string& path, std::vector<std::string> columns);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
@@ -39,7 +53,8 @@ class CsvWriter {
     std::vector<std::string> fields_;
   };
 
-  // Writes the row as one line and flushes it.
+  // Writes the row as one line, unbuffered. On a failed or short write, cuts the file back to
+  // its last whole line and throws WriteError.
   void Write(const Row& row);
   const std::string& path() const { return path_; }
   const std::vector<std::string>& columns() const { return columns_; }
@@ -47,7 +62,8 @@ class CsvWriter {
  private:
   std::string path_;
   std::vector<std::string> columns_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;
+  long long whole_lines_bytes_ = 0;  // the file's length up to its last whole line
 };
 
 }  // namespace cb

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "io/input_error.h"
+#include "io/input_file.h"
 
 namespace cb::io {
 
@@ -159,11 +160,7 @@ int NodesOf(std::int64_t type) {
 }  // namespace
 
 GmshMesh ReadGmsh(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the mesh file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseGmsh(text.str(), path);
+  return ParseGmsh(ReadInputFile(path, "mesh file"), path);
 }
 
 GmshMesh ParseGmsh(const std::string& text, const std::string& file) {

@@ -8,6 +8,7 @@
 
 #include "io/directions.h"
 #include "io/gmsh.h"
+#include "io/input_file.h"
 #include "io/json_node.h"
 #include "io/problem_file.h"
 #include "model/complementarity_model.h"
@@ -78,6 +79,16 @@ void ReadVersion(const JsonNode& root) {
   if (auto v = root.Optional("version")) {
     if (v->Integer() != 1) v->Fail("only version 1 is known, got " + std::to_string(v->Integer()));
   }
+}
+
+// A problem's name becomes file names (vtk/NAME.pvd, vtk/NAME_0000.vtu): only characters that
+// keep it one name inside the output directory and need no quoting in a path or in XML.
+bool IsFileSafeName(const std::string& name) {
+  if (name.empty() || name.front() == '.' || name.front() == '-') return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+           c == '_' || c == '+' || c == '-';
+  });
 }
 
 std::string OptionalString(const JsonNode& root, const char* key, const std::string& fallback) {
@@ -730,22 +741,22 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
   }
   problem.name = OptionalString(root, "name", std::filesystem::path(file).stem().string());
   if (problem.name.empty()) root.Field("name").Fail("must not be empty");
+  if (!IsFileSafeName(problem.name)) {
+    throw InputError(file, "/name",
+                     "'" + problem.name +
+                         "' cannot name the output files (vtk/NAME.pvd): use letters, digits "
+                         "and ._+- only, not first '.' or '-'" +
+                         (root.Has("name") ? "" : "; the default is the file's name"));
+  }
   problem.units = OptionalString(root, "units", k == "lcp" ? "none" : "consistent units");
   return problem;
 }
 
 Problem LoadProblemFile(const std::string& path,
                         const std::map<std::string, std::string>& settings) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path, "", "is a directory, not a problem file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the problem file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = ReadInputFile(path, "problem file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return ParseProblemFile(text.str(), path, directory.empty() ? "." : directory, settings);
+  return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);
 }
 
 }  // namespace cb::io
