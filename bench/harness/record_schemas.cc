@@ -98,8 +98,8 @@ Column<Data> TimeColumn() {
 template <typename Data>
 Column<Data> StatusColumn() {
   return {"status",
-          "the solver's own outcome: converged, limit_reached, failed, stopped_by_caller, "
-          "not_run",
+          "the solver's own outcome: converged, limit_reached, time_limit (the solve ran out of "
+          "time: a failed step), failed, stopped_by_caller (SIGINT/SIGTERM), not_run",
           [](const Data& d) -> Cell { return ToString(d.record.result.status); }};
 }
 template <typename Data>

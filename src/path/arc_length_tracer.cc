@@ -38,9 +38,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
         AbandonBranchSwitch();  // not a failure of the path: it goes on along its branch
         continue;
       }
-      return Finish(Status::kFailed, "step " + std::to_string(step) + " failed the verdict after " +
-                                         std::to_string(options_.max_cutbacks) +
-                                         " cut-backs of the arc length");
+      return Finish(Status::kFailed, StepFailure(step, attempt));
     }
     if (leg->switches_branch()) EnterNewBranch();
     LocateKinksAndRedirect(*leg, &attempt);
@@ -129,7 +127,7 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
   ++summary_.attempts;
   attempt.reversed = leg.Reversed(attempt.result.point, theta);
-  attempt.accepted = attempt.verdict.verified && !attempt.reversed;
+  attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
   return attempt;
 }
 
@@ -203,6 +201,17 @@ void ArcLengthTracer::Accept(const StepAttempt& attempt,
   // A step leaving a bifurcation point starts there, not where this solve ended: this solve's
   // backend state is no start for it.
   next_.warm_state = next_.branch_switch ? std::any() : attempt.result.warm_state;
+}
+
+// Why the step failed: the verdict, or the time limit when the last cut-back ran into it.
+std::string ArcLengthTracer::StepFailure(int step, const StepAttempt& last) const {
+  const std::string after =
+      " after " + std::to_string(options_.max_cutbacks) + " cut-backs of the arc length";
+  if (last.result.status == Status::kTimeLimit) {
+    return "step " + std::to_string(step) + " ran into the time limit" + after + " (" +
+           last.result.message + ")";
+  }
+  return "step " + std::to_string(step) + " failed the verdict" + after;
 }
 
 bool ArcLengthTracer::InterruptedByCaller() const {

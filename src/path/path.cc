@@ -114,7 +114,7 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
   RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
-  attempt.accepted = attempt.verdict.verified;
+  attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict);
   if (observer != nullptr) observer->OnAttempt(attempt);
 
   PathSummary summary;
