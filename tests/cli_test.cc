@@ -200,6 +200,9 @@ TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
       {run + "--arc-length inf", "--arc-length: must be finite"},
       {run + "--arc-length 0", "--arc-length"},
       {run + "--tol nan", "--tol"},
+      {run + "--tol 1e8", "--tol: must be at most"},  // it would "verify" anything
+      {run + "--tol 1e300", "--tol: must be at most"},
+      {run + "--tol 2e-4", "--tol: must be at most"},
       {run + "--time-limit -1", "--time-limit"},
       {run + "--max-cutbacks -1", "--max-cutbacks"},
       {run + "--eta 2.5", "--eta"},
@@ -418,6 +421,18 @@ TEST(CliTest, RunWritesTheFiveRecordFiles) {
   EXPECT_EQ(Lines(dir / "kinks.csv").size(), 2u);     // header + the one contact change
   EXPECT_EQ(Lines(dir / "solution.csv").size(), 4u);  // header + 3 nodes
   EXPECT_EQ(Lines(dir / "contacts.csv").size(), 2u);
+}
+
+// Every attempt records the tolerance it was judged to, so a record says how strict its
+// "verified" is.
+TEST(CliTest, StepsRecordTheVerdictsTolerance) {
+  const auto dir = TempDir("tolerance");
+  const Outcome o = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 3 --tol 1e-4 --out " + dir.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto rows = Table(dir / "steps.csv");
+  ASSERT_FALSE(rows.empty());
+  for (const auto& row : rows) EXPECT_EQ(Number(row, "tolerance"), 1e-4);
 }
 
 TEST(CliTest, AFailedRunExitsWith3AndKeepsItsRecords) {

@@ -161,6 +161,20 @@ TEST(PathTest, AStepThatCannotBeSolvedIsCutBackThenTheRunStops) {
   for (const auto& a : c.attempts) EXPECT_FALSE(a.accepted);
 }
 
+// A tolerance beyond the verdict's range would call poor answers verified: refused, by name.
+TEST(PathTest, AToleranceOutsideTheVerdictsRangeIsRefused) {
+  PathOptions o;
+  for (double tolerance : {0.0, 2.0 * kMaxVerdictTolerance, 1e8, 1e300}) {
+    o.tolerance = tolerance;
+    std::string why;
+    EXPECT_FALSE(o.IsValid(&why)) << tolerance;
+    EXPECT_NE(why.find("tolerance"), std::string::npos) << why;
+  }
+  o.tolerance = kMaxVerdictTolerance;
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+}
+
 TEST(PathTest, InterruptStopsBetweenSteps) {
   const Problem p = MakeProblem("two-bar");
   ImplicitFb f;

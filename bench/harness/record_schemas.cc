@@ -226,6 +226,8 @@ const RecordSchema<AttemptRow>& StepsSchema() {
            [](const D& d) -> Cell { return d.record.branch; }},
           {"branch_switch", "this step left a bifurcation point along its null vector",
            [](const D& d) -> Cell { return d.record.branch_switch; }},
+          {"tolerance", "the verdict's tolerance the attempt was judged to (`--tol`)",
+           [](const D& d) -> Cell { return d.record.verdict.tolerance; }},
           ResultMessageColumn<D>(),
       }};
   return schema;

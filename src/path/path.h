@@ -23,7 +23,7 @@ struct PathOptions {
   double arc_length = 0.1;     // theta of (33)
   double lambda_weight = 1.0;  // w of ||(du, dlambda)||_H
   int max_steps = 100;         // accepted steps to take
-  double tolerance = 1e-8;     // verdict tolerance (docs/method.md section 7)
+  double tolerance = 1e-8;     // verdict tolerance, in (0, kMaxVerdictTolerance] (section 7)
   StartKind start = StartKind::kWarm;
   // A step that fails the verdict (or turns back) is retried with theta halved, at most this
   // many times; then the path stops with Status::kFailed. After an accepted step theta grows
