@@ -97,6 +97,32 @@ TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
   EXPECT_GT(max_lambda, limit * (1.0 - 1e-3));
 }
 
+// The two-bar truss's limit point, recorded by the path at the located point: lambda within
+// 1e-8 of the closed form l^3 = b^2 L (not at the accepted state one step away from it).
+TEST(PathTest, TwoBarLimitPointIsLocatedToTheClosedForm) {
+  const Problem p = MakeProblem("two-bar");
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
+  ImplicitFb f;
+  Collector c;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 120;
+  o.bifurcations = BifurcationMode::kDetect;
+  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  const double exact = t.Lambda(t.LimitHeight());
+  int limits = 0;
+  for (const CriticalPointRecord& point : c.critical) {
+    if (point.kind != CriticalPointRecord::Kind::kLimit) continue;
+    ++limits;
+    EXPECT_TRUE(point.located) << point.message;
+    const double sign = point.state.lambda > 0.0 ? 1.0 : -1.0;  // the snap-back's own limit
+    EXPECT_NEAR(point.state.lambda, sign * exact, 1e-8 * exact);
+  }
+  EXPECT_GE(limits, 1);
+  EXPECT_EQ(s.limit_points, limits);
+}
+
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);

@@ -76,9 +76,11 @@ struct KinkRecord {
 };
 
 // A critical point of the path, found between accepted steps step - 1 and step:
-//  - kLimit: the load parameter turned (dlambda changed sign); `state` is the accepted state
-//    where it did; `nonsmooth` when a kink was located in one of the two steps around it
-//    (the report's point B of P2, a limit point made by a contact change);
+//  - kLimit: the load parameter turned (dlambda changed sign); a smooth one is located by
+//    bisection on the sign of the tangent's load component (`state`, `verdict`, `located`),
+//    else `state` is the accepted state where it turned; `nonsmooth` when a kink was located
+//    in one of the two steps around it (the report's point B of P2, a limit point made by a
+//    contact change);
 //  - kBifurcation: the number of unstable modes changed within a step whose contact status
 //    did not change, and the orientation of the path (the sign of the determinant of the
 //    step's Jacobian with its arc-length row) changed there too: the path crossed another
@@ -92,7 +94,7 @@ struct CriticalPointRecord {
   Kind kind = Kind::kLimit;
   bool nonsmooth = false;
   State state;
-  bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance
+  bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance; kLimit: located
   int bisections = 0;
   Verdict verdict;
   Vec mode;               // kBifurcation: the null vector (unit norm)
