@@ -123,6 +123,67 @@ TEST(PathTest, TwoBarLimitPointIsLocatedToTheClosedForm) {
   EXPECT_EQ(s.limit_points, limits);
 }
 
+// Every kink of P2's first steps is located and verified in every smoothing case. In case 3
+// the kink system was singular in rho at the kink: Newton stopped on ||F|| with rho ~ 1e-7 and
+// the kinks' comp_res ~ 6e-7 failed the verdict.
+TEST(PathTest, EveryEtaCaseVerifiesTheKinksOfP2) {
+  const Problem p = MakeProblem("arch-flat");
+  for (EtaCase eta : {EtaCase::kCase1, EtaCase::kCase2, EtaCase::kCase3}) {
+    ImplicitFbOptions options;
+    options.eta = eta;
+    ImplicitFb f(options);
+    Collector c;
+    const PathSummary s = Trace(p, f, 40, &c);
+    const int id = static_cast<int>(eta);
+    ASSERT_EQ(s.status, Status::kConverged) << "eta case " << id << ": " << s.message;
+    ASSERT_GE(c.kinks.size(), 3u) << "eta case " << id;
+    for (const KinkRecord& k : c.kinks) {
+      EXPECT_TRUE(k.verdict.verified) << "eta case " << id << ", step " << k.step << ", pair "
+                                      << k.pair << ": comp_res " << k.verdict.comp_res;
+    }
+    EXPECT_EQ(s.kinks, static_cast<int>(c.kinks.size())) << "eta case " << id;
+  }
+}
+
+// implicit-fb, except that every kink solve (53) fails.
+class NoKinkSolves final : public Formulation {
+ public:
+  std::string name() const override { return "no-kink-solves"; }
+  std::string solver() const override { return inner_.solver(); }
+  std::string settings() const override { return inner_.settings(); }
+
+ private:
+  void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
+               StepResult* result) override {
+    if (step.constraint.kind != ConstraintKind::kKink) {
+      *result = inner_.Solve(step, start, controls);
+      return;
+    }
+    result->status = Status::kFailed;
+    result->message = "kink solves refused";
+    result->point.du = Vec::Zero(step.num_dofs());
+    result->point.g = Vec::Zero(step.num_pairs());
+    result->point.r = Vec::Zero(step.num_pairs());
+  }
+  ImplicitFb inner_;
+};
+
+// A kink that is not located fails the run: its summary says so, as kinks.csv does, and the
+// status is not kConverged (so `run` exits 3).
+TEST(PathTest, AKinkNotLocatedFailsTheRun) {
+  const Problem p = MakeProblem("two-bar-obstacle");
+  NoKinkSolves f;
+  Collector c;
+  const PathSummary s = Trace(p, f, 42, &c, 0.02);  // onto the floor at step 39
+  ASSERT_EQ(c.kinks.size(), 1u);
+  EXPECT_FALSE(c.kinks[0].verdict.verified);
+  EXPECT_EQ(s.accepted_steps, 42);
+  EXPECT_EQ(s.kinks, 0);
+  EXPECT_EQ(s.kinks_not_located, 1);
+  EXPECT_EQ(s.status, Status::kFailed);
+  EXPECT_NE(s.message.find("1 kinks were not located"), std::string::npos) << s.message;
+}
+
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);

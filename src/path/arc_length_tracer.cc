@@ -49,7 +49,13 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
                     "stopped by the caller after step " + std::to_string(step));
     }
   }
-  return Finish(Status::kConverged, std::to_string(summary_.accepted_steps) + " steps accepted");
+  const std::string accepted = std::to_string(summary_.accepted_steps) + " steps accepted";
+  if (summary_.kinks_not_located > 0) {
+    return Finish(Status::kFailed, accepted + ", but " +
+                                       std::to_string(summary_.kinks_not_located) +
+                                       " kinks were not located (kinks.csv: verified, between)");
+  }
+  return Finish(Status::kConverged, accepted);
 }
 
 // The first heading is the tangent predictor at `initial`.
@@ -161,6 +167,7 @@ void ArcLengthTracer::LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* at
       kink_locator_.Locate(attempt->step, leg.origin().state, attempt->state, observer_);
   attempt->kinks = kinks.found;
   summary_.kinks += attempt->kinks;
+  summary_.kinks_not_located += kinks.not_located;
   if (!kinks.nearest) return;
   const Vec du_after = attempt->state.u - kinks.nearest->u;
   const double dl_after = attempt->state.lambda - kinks.nearest->lambda;

@@ -117,6 +117,9 @@ struct PathSummary {
   int accepted_steps = 0;
   int attempts = 0;
   int kinks = 0;
+  // Kinks solved for (53) but not verified or not between their steps (kinks.csv says which):
+  // the path then ends as kFailed, whatever its steps did.
+  int kinks_not_located = 0;
   int limit_points = 0;
   int bifurcations = 0;
   int branch_switches = 0;
