@@ -43,6 +43,16 @@ PathSummary Trace(const Problem& p, Formulation& f, int steps, Collector* c, dou
 
 using fixtures::TwoBarOf;
 
+// 120 steps of theta = 0.02 over the two-bar truss's snap-through, watching the unstable modes.
+PathSummary TraceSnapThrough(const Problem& p, Collector* c) {
+  ImplicitFb f;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 120;
+  o.bifurcations = BifurcationMode::kDetect;
+  return TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, c);
+}
+
 TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
   const Problem p = MakeProblem("bar-wall");
   ImplicitFb f;
@@ -102,13 +112,8 @@ TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
 TEST(PathTest, TwoBarLimitPointIsLocatedToTheClosedForm) {
   const Problem p = MakeProblem("two-bar");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);
-  ImplicitFb f;
   Collector c;
-  PathOptions o;
-  o.arc_length = 0.02;
-  o.max_steps = 120;
-  o.bifurcations = BifurcationMode::kDetect;
-  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  const PathSummary s = TraceSnapThrough(p, &c);
   ASSERT_EQ(s.status, Status::kConverged) << s.message;
   const double exact = t.Lambda(t.LimitHeight());
   int limits = 0;
@@ -403,13 +408,8 @@ TEST(PathTest, SteepTwoBarBifurcationIsLocatedAndTheOtherBranchIsTaken) {
 TEST(PathTest, UnstableModesCountTheDescendingBranchOfTheSnapThrough) {
   const Problem p = MakeProblem("two-bar");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);
-  ImplicitFb f;
   Collector c;
-  PathOptions o;
-  o.arc_length = 0.02;
-  o.max_steps = 120;
-  o.bifurcations = BifurcationMode::kDetect;
-  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  const PathSummary s = TraceSnapThrough(p, &c);
   ASSERT_EQ(s.status, Status::kConverged) << s.message;
   EXPECT_EQ(s.bifurcations, 0);
   EXPECT_EQ(s.limit_points, 2);  // the maximum and the minimum of lambda(w)
