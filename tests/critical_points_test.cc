@@ -34,7 +34,7 @@ class CriticalPointsTest : public ::testing::Test {
     StepOrigin origin;
     origin.state = StateAt(p, w);
     origin.unstable_modes = UnstableModes(*p.model, p.scales, origin.state);
-    if (previous_loaded) origin.previous = StepOrigin::PreviousStep{1.0, 0};
+    if (previous_loaded) origin.previous = StepOrigin::PreviousStep{1.0, 0, std::nullopt};
     return origin;
   }
 

@@ -189,6 +189,33 @@ TEST(PathTest, AKinkNotLocatedFailsTheRun) {
   EXPECT_NE(s.message.find("1 kinks were not located"), std::string::npos) << s.message;
 }
 
+// Pressed onto the floor, the two-bar truss's load turns where the apex touches it: that limit
+// point is recorded at the kink (apex on the floor, zero reaction), not at the accepted state
+// before it.
+TEST(PathTest, ALimitPointAtAKinkIsRecordedAtTheKink) {
+  const Problem p = MakeProblem("two-bar-obstacle");
+  ImplicitFb f;
+  Collector c;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 60;
+  o.bifurcations = BifurcationMode::kDetect;
+  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  ASSERT_EQ(c.kinks.size(), 1u);
+  const double floor = p.parameters.Real("floor_height");
+  int at_kinks = 0;
+  for (const CriticalPointRecord& point : c.critical) {
+    if (point.kind != CriticalPointRecord::Kind::kLimit || !point.nonsmooth) continue;
+    ++at_kinks;
+    EXPECT_TRUE(point.located) << point.message;
+    EXPECT_EQ(point.state.lambda, c.kinks[0].state.lambda);
+    EXPECT_NEAR(TwoBarOf(p).h + point.state.u[p.control_dof], floor, 1e-10);
+    EXPECT_TRUE(fixtures::CheckTwoBarObstacle(p, point.state));
+  }
+  EXPECT_EQ(at_kinks, 1);
+}
+
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);

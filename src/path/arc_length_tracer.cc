@@ -168,6 +168,7 @@ void ArcLengthTracer::LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* at
   attempt->kinks = kinks.found;
   summary_.kinks += attempt->kinks;
   summary_.kinks_not_located += kinks.not_located;
+  attempt->kink = kinks.nearest;
   if (!kinks.nearest) return;
   const Vec du_after = attempt->state.u - kinks.nearest->u;
   const double dl_after = attempt->state.lambda - kinks.nearest->lambda;
@@ -200,8 +201,9 @@ void ArcLengthTracer::Accept(const StepAttempt& attempt,
     observer_.OnCriticalPoint(point);
     if (point.switched) next_.branch_switch = point;
   }
-  at_.accepted = {attempt.state, attempt.stability,
-                  StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks}};
+  at_.accepted = {
+      attempt.state, attempt.stability,
+      StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks, attempt.kink}};
   summary_.final_state = attempt.state;
   ++summary_.accepted_steps;
   next_.theta = std::min(options_.arc_length, 2.0 * next_.theta);

@@ -107,7 +107,11 @@ std::vector<CriticalPointRecord> CriticalPointFinder::Find(const StepOrigin& ori
                                                            bool may_switch) const {
   std::vector<CriticalPointRecord> critical;
   if (std::optional<CriticalPointRecord> limit = LimitPoint(origin, taken)) {
-    if (!limit->nonsmooth) LocateLimitPoint(origin, taken, &*limit);
+    if (limit->nonsmooth) {
+      PlaceAtTheKink(origin, taken, &*limit);
+    } else {
+      LocateLimitPoint(origin, taken, &*limit);
+    }
     critical.push_back(*limit);
   }
   if (origin.unstable_modes < 0 || taken.stability < 0 ||
@@ -291,6 +295,25 @@ void CriticalPointFinder::LocateLimitPoint(const StepOrigin& origin, const StepA
   limit->verdict = near_wins ? near_verdict : far_verdict;
   limit->located = true;
   limit->message = "located by bisection on the sign of the tangent's load component";
+}
+
+// A limit point made by a contact change is where the load turns at a kink: of the kinks
+// located in the two steps around it, the one where the load went furthest in its direction
+// before the turn. Left at the accepted state when neither step's kink is at hand.
+void CriticalPointFinder::PlaceAtTheKink(const StepOrigin& origin, const StepAttempt& taken,
+                                         CriticalPointRecord* limit) const {
+  const int before = origin.previous->dlambda > 0.0 ? 1 : -1;
+  const State* kink = nullptr;
+  for (const std::optional<State>* candidate : {&origin.previous->kink, &taken.kink}) {
+    if (!candidate->has_value()) continue;
+    if (kink == nullptr || before * ((*candidate)->lambda - kink->lambda) > 0.0) {
+      kink = &**candidate;
+    }
+  }
+  if (kink == nullptr) return;
+  limit->state = *kink;
+  limit->located = true;  // the kink was located and verified (section 6)
+  limit->message = "the load parameter turned at a kink";
 }
 
 }  // namespace cb

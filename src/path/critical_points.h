@@ -38,6 +38,8 @@ class CriticalPointFinder {
   // lambda is stationary there, so its error is of the order of the bracket squared.
   static constexpr double kLimitPointTolerance = 1e-6;
 
+  void PlaceAtTheKink(const StepOrigin& origin, const StepAttempt& taken,
+                      CriticalPointRecord* limit) const;
   void LocateLimitPoint(const StepOrigin& origin, const StepAttempt& taken,
                         CriticalPointRecord* limit) const;
   bool ContactStatusChanged(const State& origin, const StepAttempt& taken) const;

@@ -3,6 +3,7 @@
 // the common interface, and observes through PathObserver (no I/O here).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "model/contact_model.h"
@@ -54,9 +55,10 @@ struct StepAttempt {
   Verdict verdict;
   bool reversed = false;  // the answer turned back on the path (the guard rejected it)
   bool accepted = false;
-  State state;        // the state the attempt reached (base + increment)
-  int n_contact = 0;  // pairs in contact at `state` (CountContacts)
-  int kinks = 0;      // kinks located between the previous state and this one
+  State state;                // the state the attempt reached (base + increment)
+  int n_contact = 0;          // pairs in contact at `state` (CountContacts)
+  int kinks = 0;              // kinks located between the previous state and this one
+  std::optional<State> kink;  // of those, the one nearest this state
   // Unstable modes at `state` (stability.h: negative eigenvalues of the stiffness on the
   // motions that keep the closed contacts closed; 0 = stable); -1 when not computed.
   int stability = -1;
@@ -80,7 +82,7 @@ struct KinkRecord {
 //    bisection on the sign of the tangent's load component (`state`, `verdict`, `located`),
 //    else `state` is the accepted state where it turned; `nonsmooth` when a kink was located
 //    in one of the two steps around it (the report's point B of P2, a limit point made by a
-//    contact change);
+//    contact change), and then `state` is that kink;
 //  - kBifurcation: the number of unstable modes changed within a step whose contact status
 //    did not change, and the orientation of the path (the sign of the determinant of the
 //    step's Jacobian with its arc-length row) changed there too: the path crossed another
