@@ -201,6 +201,9 @@ TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
       {run + "--arc-length inf", "--arc-length: must be finite"},
       {run + "--arc-length 0", "--arc-length"},
       {run + "--tol nan", "--tol"},
+      {run + "--tol 1e8", "--tol: must be at most"},  // it would "verify" anything
+      {run + "--tol 1e300", "--tol: must be at most"},
+      {run + "--tol 2e-4", "--tol: must be at most"},
       {run + "--time-limit -1", "--time-limit"},
       {run + "--max-cutbacks -1", "--max-cutbacks"},
       {run + "--eta 2.5", "--eta"},
@@ -421,6 +424,18 @@ TEST(CliTest, RunWritesTheFiveRecordFiles) {
   EXPECT_EQ(Lines(dir / "contacts.csv").size(), 2u);
 }
 
+// Every attempt records the tolerance it was judged to, so a record says how strict its
+// "verified" is.
+TEST(CliTest, StepsRecordTheVerdictsTolerance) {
+  const auto dir = TempDir("tolerance");
+  const Outcome o = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 3 --tol 1e-4 --out " + dir.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto rows = Table(dir / "steps.csv");
+  ASSERT_FALSE(rows.empty());
+  for (const auto& row : rows) EXPECT_EQ(Number(row, "tolerance"), 1e-4);
+}
+
 TEST(CliTest, AFailedRunExitsWith3AndKeepsItsRecords) {
   const auto dir = TempDir("fail");
   // A verdict tolerance no double can meet: every step fails, the run stops.
@@ -432,6 +447,41 @@ TEST(CliTest, AFailedRunExitsWith3AndKeepsItsRecords) {
   const auto steps = Lines(dir / "steps.csv");
   ASSERT_EQ(steps.size(), 3u);  // header + two failed attempts
   EXPECT_NE(steps[1].find(",false,"), std::string::npos);
+}
+
+// A solve that runs out of time is a failed step: cut back, recorded as time_limit with the
+// reason, and the run ends as failed (3), not as interrupted (4, SIGINT/SIGTERM only).
+TEST(CliTest, ATimeLimitFailsTheStepNotTheProcess) {
+  const auto dir = TempDir("time_limit");
+  const Outcome o = RunCli(
+      "run --problem two-bar --formulation implicit-fb --steps 3 --time-limit 1e-9 "
+      "--max-cutbacks 1 --out " +
+      dir.string());
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find("ran into the time limit after 1 cut-backs"), std::string::npos)
+      << o.output;
+  const auto steps = Lines(dir / "steps.csv");
+  ASSERT_EQ(steps.size(), 3u) << o.output;  // header + the attempt and its cut-back
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    EXPECT_NE(steps[i].find(",time_limit,"), std::string::npos) << steps[i];
+    EXPECT_NE(steps[i].find("time limit of 1e-09 s reached"), std::string::npos) << steps[i];
+  }
+}
+
+// In `compare` a formulation that runs out of time fails its run; the others still run.
+TEST(CliTest, ATimeLimitInCompareFailsOneRunAndTheComparisonGoesOn) {
+  const auto dir = TempDir("compare_time_limit");
+  const Outcome o = RunCli(
+      "compare --problem two-bar --formulations implicit-fb,nonsmooth-fb --starts warm,cold "
+      "--mode free --steps 2 --time-limit 1e-9 --out " +
+      dir.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  const auto runs = Lines(dir / "runs.csv");
+  ASSERT_EQ(runs.size(), 5u) << o.output;  // header + 2 formulations x 2 starts
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    EXPECT_NE(runs[i].find(",failed,"), std::string::npos) << runs[i];
+    EXPECT_NE(runs[i].find(",0,step 1 ran into the time limit"), std::string::npos) << runs[i];
+  }
 }
 
 TEST(CliTest, CompareReplaysTheSameStepsForEveryFormulationAndStart) {

@@ -34,7 +34,7 @@ class CriticalPointsTest : public ::testing::Test {
     StepOrigin origin;
     origin.state = StateAt(p, w);
     origin.unstable_modes = UnstableModes(*p.model, p.scales, origin.state);
-    if (previous_loaded) origin.previous = StepOrigin::PreviousStep{1.0, 0};
+    if (previous_loaded) origin.previous = StepOrigin::PreviousStep{1.0, 0, std::nullopt};
     return origin;
   }
 
@@ -75,7 +75,29 @@ TEST_F(CriticalPointsTest, AStepOverTheLimitPointIsALimitPointOnly) {
   EXPECT_EQ(critical[0].kind, CriticalPointRecord::Kind::kLimit);
   EXPECT_EQ(critical[0].step, 5);
   EXPECT_FALSE(critical[0].nonsmooth);
-  EXPECT_EQ(critical[0].state.lambda, origin.state.lambda);
+  // Located, not left at the accepted state before the turn: lambda to 1e-8 of the closed form.
+  const double exact = TwoBarOf(p).Lambda(limit);
+  EXPECT_TRUE(critical[0].located) << critical[0].message;
+  EXPECT_NEAR(critical[0].state.lambda, exact, 1e-8 * exact);
+  EXPECT_GT(std::abs(origin.state.lambda - exact), 1e-6 * exact);  // the old record was off
+  EXPECT_TRUE(critical[0].verdict.verified);
+}
+
+// The load may turn within the previous step: the origin is already past the limit point
+// (the load falls there), and the point is located behind it.
+TEST_F(CriticalPointsTest, ALimitPointWithinThePreviousStepIsLocatedBehindTheOrigin) {
+  const Problem p = MakeProblem("two-bar");
+  const double limit = TwoBarOf(p).LimitHeight();
+  const StepOrigin origin = OriginAt(p, limit - 0.004, /*previous_loaded=*/true);
+  const StepAttempt taken = StepTo(p, origin, limit - 0.03);
+  ASSERT_LT(taken.result.point.dlambda, 0.0);
+  const std::vector<CriticalPointRecord> critical = Find(p, origin, taken, false);
+  ASSERT_FALSE(critical.empty());
+  EXPECT_EQ(critical[0].kind, CriticalPointRecord::Kind::kLimit);
+  const double exact = TwoBarOf(p).Lambda(limit);
+  EXPECT_TRUE(critical[0].located) << critical[0].message;
+  EXPECT_NEAR(critical[0].state.lambda, exact, 1e-8 * exact);
+  EXPECT_NEAR(TwoBarOf(p).h + critical[0].state.u[p.control_dof], limit, 1e-3);
 }
 
 // Without a previous step on the branch (the start of the path, or the first step off a

@@ -11,10 +11,12 @@
 #include <string>
 
 #include "fixtures.h"
+#include "formulations/registry.h"
 #include "io/gmsh.h"
 #include "io/input_error.h"
 #include "io/json_node.h"
 #include "io/problem_file.h"
+#include "path/path.h"
 
 namespace cb {
 namespace {
@@ -116,6 +118,40 @@ TEST(IoProblemFileTest, LcpRoundTrips) {
   EXPECT_EQ(q.loading, LoadingKind::kFixedLoad);
   EXPECT_EQ(q.load, 0.0);
   ExpectSameModel(*p.model, *q.model, RandomVector(4, 1.0, 3), "lcp4");
+}
+
+// An LCP whose solution is ~1e-4: by default its scales are the sizes the data imply
+// (R = ||q||_inf, L = R / ||M||_inf), so every formulation solves an O(1) problem and answers
+// to relative accuracy. With L = R = 1 Ipopt stopped ~1e-5 relative from the answer.
+TEST(IoProblemFileTest, AnLcpsDefaultScalesComeFromItsData) {
+  const std::string text =
+      R"({"kind": "lcp", "M": [[2, 1, 0], [1, 2, 1], [0, 1, 2]], "q": [-2e-4, 3e-4, -3e-4]})";
+  const Problem p = io::ParseProblemFile(text, "small.json", ".");
+  EXPECT_DOUBLE_EQ(p.scales.force, 3e-4);
+  EXPECT_DOUBLE_EQ(p.scales.length, 3e-4 / 4.0);  // ||M||_inf = 4
+  const Problem given = io::ParseProblemFile(
+      R"({"kind": "lcp", "M": [[2]], "q": [-1], "length_scale": 5, "force_scale": 7})", "g.json",
+      ".");
+  EXPECT_EQ(given.scales.length, 5.0);
+  EXPECT_EQ(given.scales.force, 7.0);
+
+  Vec exact(3);
+  exact << 1e-4, 0.0, 1.5e-4;  // z2 = 0: 2 z1 = 2e-4, 2 z3 = 3e-4; w2 = z1 + z3 + 3e-4 > 0
+  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(0.0),
+                         p.scales};
+  for (const FormulationInfo& info : FormulationRegistry()) {
+    if (!info.available) continue;
+    const auto formulation = MakeFormulation(info.name, FormulationConfig());
+    if (!formulation->Accepts(step, nullptr)) continue;
+    StartPoint start;  // as `run` starts a fixed-load step: from z = 0, r = 0
+    start.du = Vec::Zero(3);
+    start.r = Vec::Zero(3);
+    const StepResult result = formulation->Solve(step, start);
+    EXPECT_TRUE(Judge(step, result.point, 1e-8).verified) << info.name << ": " << result.message;
+    // nlopt-energy stops on its own xtol in the data's units, which no scale reaches.
+    if (info.name == "nlopt-energy") continue;
+    EXPECT_LE((result.point.du - exact).lpNorm<Eigen::Infinity>(), 1e-6 * 1.5e-4) << info.name;
+  }
 }
 
 TEST(IoProblemFileTest, ExamplesLoadWithTheirStatedCounts) {

@@ -544,7 +544,7 @@ TEST(NloptTest, ControlsStopTheSolve) {
     SolveControls tiny;
     tiny.time_limit_s = 1e-12;
     const StepResult limited = f->Solve(step, start, tiny);
-    EXPECT_EQ(limited.status, Status::kLimitReached) << name << ": " << limited.message;
+    EXPECT_EQ(limited.status, Status::kTimeLimit) << name << ": " << limited.message;
   }
 }
 

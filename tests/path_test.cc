@@ -43,6 +43,16 @@ PathSummary Trace(const Problem& p, Formulation& f, int steps, Collector* c, dou
 
 using fixtures::TwoBarOf;
 
+// 120 steps of theta = 0.02 over the two-bar truss's snap-through, watching the unstable modes.
+PathSummary TraceSnapThrough(const Problem& p, Collector* c) {
+  ImplicitFb f;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 120;
+  o.bifurcations = BifurcationMode::kDetect;
+  return TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, c);
+}
+
 TEST(PathTest, BarAgainstWallFollowsItsClosedForm) {
   const Problem p = MakeProblem("bar-wall");
   ImplicitFb f;
@@ -95,6 +105,115 @@ TEST(PathTest, TwoBarSnapThroughMatchesClosedFormThroughTheLimitPoint) {
   const double limit = t.Lambda(t.LimitHeight());
   EXPECT_LE(max_lambda, limit + 1e-12);
   EXPECT_GT(max_lambda, limit * (1.0 - 1e-3));
+}
+
+// The two-bar truss's limit point, recorded by the path at the located point: lambda within
+// 1e-8 of the closed form l^3 = b^2 L (not at the accepted state one step away from it).
+TEST(PathTest, TwoBarLimitPointIsLocatedToTheClosedForm) {
+  const Problem p = MakeProblem("two-bar");
+  const fixtures::TwoBarClosedForm t = TwoBarOf(p);
+  Collector c;
+  const PathSummary s = TraceSnapThrough(p, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  const double exact = t.Lambda(t.LimitHeight());
+  int limits = 0;
+  for (const CriticalPointRecord& point : c.critical) {
+    if (point.kind != CriticalPointRecord::Kind::kLimit) continue;
+    ++limits;
+    EXPECT_TRUE(point.located) << point.message;
+    const double sign = point.state.lambda > 0.0 ? 1.0 : -1.0;  // the snap-back's own limit
+    EXPECT_NEAR(point.state.lambda, sign * exact, 1e-8 * exact);
+  }
+  EXPECT_GE(limits, 1);
+  EXPECT_EQ(s.limit_points, limits);
+}
+
+// Every kink of P2's first steps is located and verified in every smoothing case. In case 3
+// the kink system was singular in rho at the kink: Newton stopped on ||F|| with rho ~ 1e-7 and
+// the kinks' comp_res ~ 6e-7 failed the verdict.
+TEST(PathTest, EveryEtaCaseVerifiesTheKinksOfP2) {
+  const Problem p = MakeProblem("arch-flat");
+  for (EtaCase eta : {EtaCase::kCase1, EtaCase::kCase2, EtaCase::kCase3}) {
+    ImplicitFbOptions options;
+    options.eta = eta;
+    ImplicitFb f(options);
+    Collector c;
+    const PathSummary s = Trace(p, f, 40, &c);
+    const int id = static_cast<int>(eta);
+    ASSERT_EQ(s.status, Status::kConverged) << "eta case " << id << ": " << s.message;
+    ASSERT_GE(c.kinks.size(), 3u) << "eta case " << id;
+    for (const KinkRecord& k : c.kinks) {
+      EXPECT_TRUE(k.verdict.verified) << "eta case " << id << ", step " << k.step << ", pair "
+                                      << k.pair << ": comp_res " << k.verdict.comp_res;
+    }
+    EXPECT_EQ(s.kinks, static_cast<int>(c.kinks.size())) << "eta case " << id;
+  }
+}
+
+// implicit-fb, except that every kink solve (53) fails.
+class NoKinkSolves final : public Formulation {
+ public:
+  std::string name() const override { return "no-kink-solves"; }
+  std::string solver() const override { return inner_.solver(); }
+  std::string settings() const override { return inner_.settings(); }
+
+ private:
+  void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
+               StepResult* result) override {
+    if (step.constraint.kind != ConstraintKind::kKink) {
+      *result = inner_.Solve(step, start, controls);
+      return;
+    }
+    result->status = Status::kFailed;
+    result->message = "kink solves refused";
+    result->point.du = Vec::Zero(step.num_dofs());
+    result->point.g = Vec::Zero(step.num_pairs());
+    result->point.r = Vec::Zero(step.num_pairs());
+  }
+  ImplicitFb inner_;
+};
+
+// A kink that is not located fails the run: its summary says so, as kinks.csv does, and the
+// status is not kConverged (so `run` exits 3).
+TEST(PathTest, AKinkNotLocatedFailsTheRun) {
+  const Problem p = MakeProblem("two-bar-obstacle");
+  NoKinkSolves f;
+  Collector c;
+  const PathSummary s = Trace(p, f, 42, &c, 0.02);  // onto the floor at step 39
+  ASSERT_EQ(c.kinks.size(), 1u);
+  EXPECT_FALSE(c.kinks[0].verdict.verified);
+  EXPECT_EQ(s.accepted_steps, 42);
+  EXPECT_EQ(s.kinks, 0);
+  EXPECT_EQ(s.kinks_not_located, 1);
+  EXPECT_EQ(s.status, Status::kFailed);
+  EXPECT_NE(s.message.find("1 kinks were not located"), std::string::npos) << s.message;
+}
+
+// Pressed onto the floor, the two-bar truss's load turns where the apex touches it: that limit
+// point is recorded at the kink (apex on the floor, zero reaction), not at the accepted state
+// before it.
+TEST(PathTest, ALimitPointAtAKinkIsRecordedAtTheKink) {
+  const Problem p = MakeProblem("two-bar-obstacle");
+  ImplicitFb f;
+  Collector c;
+  PathOptions o;
+  o.arc_length = 0.02;
+  o.max_steps = 60;
+  o.bifurcations = BifurcationMode::kDetect;
+  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  ASSERT_EQ(c.kinks.size(), 1u);
+  const double floor = p.parameters.Real("floor_height");
+  int at_kinks = 0;
+  for (const CriticalPointRecord& point : c.critical) {
+    if (point.kind != CriticalPointRecord::Kind::kLimit || !point.nonsmooth) continue;
+    ++at_kinks;
+    EXPECT_TRUE(point.located) << point.message;
+    EXPECT_EQ(point.state.lambda, c.kinks[0].state.lambda);
+    EXPECT_NEAR(TwoBarOf(p).h + point.state.u[p.control_dof], floor, 1e-10);
+    EXPECT_TRUE(fixtures::CheckTwoBarObstacle(p, point.state));
+  }
+  EXPECT_EQ(at_kinks, 1);
 }
 
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
@@ -159,6 +278,20 @@ TEST(PathTest, AStepThatCannotBeSolvedIsCutBackThenTheRunStops) {
   EXPECT_DOUBLE_EQ(c.attempts[1].arc_length, 0.25);
   EXPECT_DOUBLE_EQ(c.attempts[2].arc_length, 0.125);
   for (const auto& a : c.attempts) EXPECT_FALSE(a.accepted);
+}
+
+// A tolerance beyond the verdict's range would call poor answers verified: refused, by name.
+TEST(PathTest, AToleranceOutsideTheVerdictsRangeIsRefused) {
+  PathOptions o;
+  for (double tolerance : {0.0, 2.0 * kMaxVerdictTolerance, 1e8, 1e300}) {
+    o.tolerance = tolerance;
+    std::string why;
+    EXPECT_FALSE(o.IsValid(&why)) << tolerance;
+    EXPECT_NE(why.find("tolerance"), std::string::npos) << why;
+  }
+  o.tolerance = kMaxVerdictTolerance;
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why)) << why;
 }
 
 TEST(PathTest, InterruptStopsBetweenSteps) {
@@ -302,13 +435,8 @@ TEST(PathTest, SteepTwoBarBifurcationIsLocatedAndTheOtherBranchIsTaken) {
 TEST(PathTest, UnstableModesCountTheDescendingBranchOfTheSnapThrough) {
   const Problem p = MakeProblem("two-bar");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);
-  ImplicitFb f;
   Collector c;
-  PathOptions o;
-  o.arc_length = 0.02;
-  o.max_steps = 120;
-  o.bifurcations = BifurcationMode::kDetect;
-  const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+  const PathSummary s = TraceSnapThrough(p, &c);
   ASSERT_EQ(s.status, Status::kConverged) << s.message;
   EXPECT_EQ(s.bifurcations, 0);
   EXPECT_EQ(s.limit_points, 2);  // the maximum and the minimum of lambda(w)

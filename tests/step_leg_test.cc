@@ -25,7 +25,7 @@ StepOrigin Origin() {
   StepOrigin o;
   o.state = {Vec2(1.0, 2.0), Vec::Zero(1), 3.0};
   o.unstable_modes = 0;
-  o.previous = StepOrigin::PreviousStep{0.5, 0};
+  o.previous = StepOrigin::PreviousStep{0.5, 0, std::nullopt};
   return o;
 }
 

@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/registry.h"
@@ -49,6 +50,17 @@ int ParseInteger(const Option& option, const std::string& text) {
 double PositiveNumber(const Option& option, const std::string& text) {
   const double v = ParseNumber(option, text);
   if (!(v > 0.0)) Refuse(option, "must be positive");
+  return v;
+}
+
+// The verdict's tolerance: positive and at most kMaxVerdictTolerance.
+double VerdictTolerance(const Option& option, const std::string& text) {
+  const double v = PositiveNumber(option, text);
+  if (v > kMaxVerdictTolerance) {
+    std::ostringstream bound;
+    bound << kMaxVerdictTolerance;
+    Refuse(option, "must be at most " + bound.str() + " (the verdict's range), got '" + text + "'");
+  }
   return v;
 }
 
@@ -194,8 +206,8 @@ std::vector<Option> MakeOptions() {
        "the formulation that traces the reference path of replay mode (default implicit-fb)",
        FormulationNames, [](O o, S v, A* a) { a->reference = Choice(o, v); }},
       {"--tol", "T", kPathCommands, Need::kOptional, false,
-       "the verdict's tolerance (docs/method.md section 7; default 1e-8)", nullptr,
-       [](O o, S v, A* a) { a->tolerance = PositiveNumber(o, v); }},
+       "the verdict's tolerance, in (0, 1e-4] (docs/method.md section 7; default 1e-8)", nullptr,
+       [](O o, S v, A* a) { a->tolerance = VerdictTolerance(o, v); }},
       {"--linear-solver", "NAME", kPathCommands, Need::kOptional, false,
        "the sparse linear solver of the equation solvers", LinearSolverNames,
        [](O o, S v, A* a) { a->config.solver_options.linear_solver = Choice(o, v); }},

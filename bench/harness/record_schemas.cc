@@ -98,8 +98,8 @@ Column<Data> TimeColumn() {
 template <typename Data>
 Column<Data> StatusColumn() {
   return {"status",
-          "the solver's own outcome: converged, limit_reached, failed, stopped_by_caller, "
-          "not_run",
+          "the solver's own outcome: converged, limit_reached, time_limit (the solve ran out of "
+          "time: a failed step), failed, stopped_by_caller (SIGINT/SIGTERM), not_run",
           [](const Data& d) -> Cell { return ToString(d.record.result.status); }};
 }
 template <typename Data>
@@ -226,6 +226,8 @@ const RecordSchema<AttemptRow>& StepsSchema() {
            [](const D& d) -> Cell { return d.record.branch; }},
           {"branch_switch", "this step left a bifurcation point along its null vector",
            [](const D& d) -> Cell { return d.record.branch_switch; }},
+          {"tolerance", "the verdict's tolerance the attempt was judged to (`--tol`)",
+           [](const D& d) -> Cell { return d.record.verdict.tolerance; }},
           ResultMessageColumn<D>(),
       }};
   return schema;

@@ -273,6 +273,7 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
   const StepEquationLayout& l = system.layout();
   const StepProblem& step = system.step();
   Stopwatch clock;
+  bool timed_out = false;
   auto observe = [&](const IterationInfo& info) {
     IterationRecord record;
     record.iteration = info.iteration;
@@ -283,10 +284,15 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
     result->history.push_back(record);
     if (on_iteration) on_iteration(*info.x);
     if (controls.interrupted && controls.interrupted()) return false;
-    if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) return false;
-    return true;
+    timed_out = controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s;
+    return !timed_out;
   };
   SolverSummary summary = solver.Solve(system, x, observe);  // not const: returned by move
+  if (timed_out && summary.status == Status::kStoppedByCaller) {
+    summary.status = Status::kTimeLimit;
+    summary.message = TimeLimitMessage(controls.time_limit_s) + " at iteration " +
+                      std::to_string(summary.iterations);
+  }
 
   result->status = summary.status;
   result->message = summary.message;

@@ -10,6 +10,14 @@ ImplicitFbSystem::ImplicitFbSystem(const StepProblem& step, EtaEquation eta,
     // value, which the nonsmooth row F4 = rho states.
     eta_.eta = EtaCase::kNonsmooth;
   }
+  if (step.constraint.kind == ConstraintKind::kKink && eta_.eta == EtaCase::kCase3) {
+    // On (53) the kink pair's row no longer holds rho (see StepEquationSystem::Residual), and
+    // case 3's row -m - 2 rho^2 has no rho derivative at the kink's rho = 0: the Jacobian's
+    // rho column vanishes there, and Newton creeps to rho ~ sqrt(tolerance), leaving the
+    // complementarity residual at that size. Case 2's row -m - (rho + rho^3) has the same
+    // solution on (53), rho = 0 with every pair complementary, and derivative -1 there.
+    eta_.eta = EtaCase::kCase2;
+  }
 }
 
 ImplicitFbSystem::~ImplicitFbSystem() = default;

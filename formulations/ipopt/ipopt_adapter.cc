@@ -93,8 +93,9 @@ Status MapIpoptStatus(Ipopt::ApplicationReturnStatus s) {
     case Ipopt::Solved_To_Acceptable_Level:
       return Status::kConverged;
     case Ipopt::Maximum_Iterations_Exceeded:
-    case Ipopt::Maximum_CpuTime_Exceeded:
       return Status::kLimitReached;
+    case Ipopt::Maximum_CpuTime_Exceeded:  // only set from SolveControls::time_limit_s
+      return Status::kTimeLimit;
     case Ipopt::User_Requested_Stop:
       return Status::kStoppedByCaller;
     default:
@@ -149,13 +150,19 @@ Ipopt::ApplicationReturnStatus RunIpopt(Ipopt::IpoptApplication* app,
 
 void RecordIpoptStatus(Ipopt::ApplicationReturnStatus status, const TnlpAdapter& adapter,
                        StepResult* result) {
-  result->status = adapter.stopped_by_caller() ? Status::kStoppedByCaller : MapIpoptStatus(status);
+  result->status = MapIpoptStatus(status);
+  if (adapter.stopped_by_controls()) {
+    result->status = adapter.timed_out() ? Status::kTimeLimit : Status::kStoppedByCaller;
+  }
   result->details["ipopt_status"] =
       std::to_string(static_cast<int>(status)) + " " + IpoptStatusName(status);
   result->details["ipopt_final_inf_pr"] = std::to_string(adapter.last_inf_pr());
   result->details["ipopt_final_inf_du"] = std::to_string(adapter.last_inf_du());
   result->details["linear_solves"] = "Hessian evaluations (one KKT factorisation each)";
   result->message = std::string("Ipopt: ") + IpoptStatusName(status);
+  if (result->status == Status::kTimeLimit) {
+    result->message += " (" + TimeLimitMessage(adapter.time_limit_s()) + ")";
+  }
 }
 
 const IpoptWarmState* PreviousIpoptState(const StartPoint& start, const std::string& formulation,

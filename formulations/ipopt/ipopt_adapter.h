@@ -110,7 +110,10 @@ class TnlpAdapter final : public Ipopt::TNLP {
   bool finalized() const { return finalized_; }
   std::exception_ptr error() const { return error_; }
   void set_iteration_offset(int offset) { iteration_offset_ = offset; }
-  bool stopped_by_caller() const { return stopped_by_caller_; }
+  // The controls stopped the solve: the interrupt hook, or the time limit (then timed_out()).
+  bool stopped_by_controls() const { return stopped_by_controls_; }
+  bool timed_out() const { return timed_out_; }
+  double time_limit_s() const { return controls_.time_limit_s; }
   double last_inf_pr() const { return last_inf_pr_; }
   double last_inf_du() const { return last_inf_du_; }
 
@@ -235,9 +238,9 @@ class TnlpAdapter final : public Ipopt::TNLP {
     last_inf_du_ = inf_du;
     try {
       result_.history.push_back(record);
-      if ((controls_.interrupted && controls_.interrupted()) ||
-          (controls_.time_limit_s > 0.0 && clock_.Seconds() > controls_.time_limit_s)) {
-        stopped_by_caller_ = true;
+      timed_out_ = controls_.time_limit_s > 0.0 && clock_.Seconds() > controls_.time_limit_s;
+      if ((controls_.interrupted && controls_.interrupted()) || timed_out_) {
+        stopped_by_controls_ = true;
         return false;
       }
     } catch (...) {
@@ -266,7 +269,8 @@ class TnlpAdapter final : public Ipopt::TNLP {
   IpoptPrimalDual start_;
   IpoptPrimalDual solution_;
   bool finalized_ = false;
-  bool stopped_by_caller_ = false;
+  bool stopped_by_controls_ = false;
+  bool timed_out_ = false;
   int iteration_offset_ = 0;
   double last_inf_pr_ = 0.0, last_inf_du_ = 0.0;
   std::exception_ptr error_;

@@ -171,7 +171,9 @@ class IpoptMpcc final : public Formulation {
           last = adapter->solution();
           have_solution = true;
         }
-        if (MapIpoptStatus(status) == Status::kConverged || adapter->stopped_by_caller()) break;
+        if (MapIpoptStatus(status) == Status::kConverged ||
+            MapIpoptStatus(status) == Status::kTimeLimit || adapter->stopped_by_controls())
+          break;
         if (weight * 10.0 > options_.penalty_max_weight * (1.0 + 1e-12)) break;
         weight *= 10.0;
       }
@@ -214,7 +216,7 @@ class IpoptMpcc final : public Formulation {
         current = adapter->solution();
         last = current;
         have_solution = true;
-        if (MapIpoptStatus(status) != Status::kConverged || adapter->stopped_by_caller()) break;
+        if (MapIpoptStatus(status) != Status::kConverged || adapter->stopped_by_controls()) break;
         if (t <= options_.scholtes_t_min) break;
         t = std::max(t * options_.scholtes_factor, options_.scholtes_t_min);
         warm_next = true;

@@ -14,13 +14,12 @@
 //    max phi/L; mpcc: max |equality row|); comp_res = ||min(g/L, -r/R)||_inf (NaN for energy,
 //    whose reactions exist only at the end); step_length = ||x - previous evaluated x||_2.
 //  - details["nlopt_result"] = "<code> <NAME>" (the raw nlopt_result); Status: SUCCESS,
-//    STOPVAL/FTOL/XTOL_REACHED -> kConverged; MAXEVAL/MAXTIME_REACHED -> kLimitReached;
-//    a stop forced because SolveControls::interrupted() said so -> kStoppedByCaller, because of
-//    the time limit -> kLimitReached (whatever code NLopt returns then); a non-finite
-//    objective, constraint or gradient from the model -> kFailed (forced stop; the message
-//    names what and at which evaluation); every failure
-//    (ROUNDOFF_LIMITED included) -> kFailed, but the point NLopt returned is kept: the verdict
-//    decides.
+//    STOPVAL/FTOL/XTOL_REACHED -> kConverged; MAXEVAL_REACHED -> kLimitReached;
+//    MAXTIME_REACHED -> kTimeLimit; a stop forced because SolveControls::interrupted() said so ->
+//    kStoppedByCaller, because of the time limit -> kTimeLimit (whatever code NLopt returns then);
+//    a non-finite objective, constraint or gradient from the model -> kFailed (forced stop; the
+//    message names what and at which evaluation); every failure (ROUNDOFF_LIMITED included) ->
+//    kFailed, but the point NLopt returned is kept: the verdict decides.
 //  - SolveControls are polled in every callback; interrupted() or the time limit force a stop
 //    (nlopt_force_stop; the time limit is also NLopt's maxtime). An exception thrown inside a
 //    callback (by the model, say) is caught there, NLopt is force-stopped, and the exception is

@@ -88,8 +88,10 @@ void NloptRun::Finish(nlopt_result code) {
       result_->status = Status::kConverged;
       break;
     case NLOPT_MAXEVAL_REACHED:
-    case NLOPT_MAXTIME_REACHED:
       result_->status = Status::kLimitReached;
+      break;
+    case NLOPT_MAXTIME_REACHED:  // only set from SolveControls::time_limit_s
+      result_->status = Status::kTimeLimit;
       break;
     default:  // FAILURE, INVALID_ARGS, OUT_OF_MEMORY, ROUNDOFF_LIMITED, FORCED_STOP
       result_->status = Status::kFailed;
@@ -99,10 +101,12 @@ void NloptRun::Finish(nlopt_result code) {
   // for one, reports FAILURE when its line search meets the +inf a stopped callback returns.
   // (An exception was rethrown before Finish, so no other forced stop reaches here.)
   if (stop_reason_ == StopReason::kInterrupted) result_->status = Status::kStoppedByCaller;
-  if (stop_reason_ == StopReason::kTimeLimit) result_->status = Status::kLimitReached;
+  if (stop_reason_ == StopReason::kTimeLimit) result_->status = Status::kTimeLimit;
   if (stop_reason_ == StopReason::kNonFinite) result_->status = Status::kFailed;
   result_->message = "NLopt " + text;
-  if (stop_reason_ == StopReason::kTimeLimit) result_->message += " (time limit)";
+  if (result_->status == Status::kTimeLimit) {
+    result_->message += " (" + TimeLimitMessage(controls_.time_limit_s) + ")";
+  }
   if (stop_reason_ == StopReason::kInterrupted) result_->message += " (interrupted)";
   if (stop_reason_ == StopReason::kNonFinite) {
     result_->message += " (stopped: the model gave a non-finite " + non_finite_ + ")";

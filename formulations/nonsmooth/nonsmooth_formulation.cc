@@ -82,6 +82,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
   const StepConstraint& c = step.constraint;
   const bool restart = options_.restart && summary.status != Status::kConverged &&
                        summary.status != Status::kStoppedByCaller &&
+                       summary.status != Status::kTimeLimit &&
                        !(summary.final_residual_inf <= options_.restart_residual) &&
                        start.kind == StartKind::kWarm && c.kind == ConstraintKind::kArcLength &&
                        c.lambda_weight > 0.0;

@@ -10,6 +10,8 @@ const char* ToString(Status status) {
       return "converged";
     case Status::kLimitReached:
       return "limit_reached";
+    case Status::kTimeLimit:
+      return "time_limit";
     case Status::kFailed:
       return "failed";
     case Status::kStoppedByCaller:

@@ -19,11 +19,13 @@ using PointMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
 
 // Outcome of a solve. The meaning is fixed across the library:
 //  kConverged       the method's own stopping test was met (the verdict may still disagree);
-//  kLimitReached    stopped at an iteration/evaluation/time limit with a usable point;
+//  kLimitReached    stopped at an iteration/evaluation limit with a usable point;
+//  kTimeLimit       stopped at SolveControls::time_limit_s: the solve did not finish, so the
+//                   step fails (the path cuts it back like any other failed step);
 //  kFailed          no usable point (singular system, non-finite values, line search failure);
-//  kStoppedByCaller a callback asked to stop;
+//  kStoppedByCaller the caller interrupted the solve (SIGINT/SIGTERM through the interrupt hook);
 //  kNotRun          nothing has been attempted yet.
-enum class Status { kNotRun, kConverged, kLimitReached, kFailed, kStoppedByCaller };
+enum class Status { kNotRun, kConverged, kLimitReached, kTimeLimit, kFailed, kStoppedByCaller };
 
 const char* ToString(Status status);
 

@@ -701,14 +701,16 @@ Problem ReadLcp(const JsonNode& root, const std::string& file,
   }
   SpMat matrix(n, n);
   matrix.setFromTriplets(entries.begin(), entries.end());
+  auto model = std::make_shared<ComplementarityModel>(ComplementarityModel::Lcp(matrix, q));
   double length = 1.0, force = 1.0;
+  model->DataScales(&length, &force);  // the default: the sizes of z and w the data imply
   if (auto l = root.Optional("length_scale")) length = l->Positive();
   if (auto f = root.Optional("force_scale")) force = f->Positive();
   Parameters p = RunParameters(length, force, Loading{}, true);
   ApplySettings(file, settings, &p);
 
   Problem problem;
-  problem.model = std::make_shared<ComplementarityModel>(ComplementarityModel::Lcp(matrix, q));
+  problem.model = std::move(model);
   problem.scales = ScalesFrom(p);
   problem.parameters = p;
   problem.loading = LoadingKind::kFixedLoad;

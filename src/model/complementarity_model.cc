@@ -159,6 +159,20 @@ void ComplementarityModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curva
   curvature->setZero();
 }
 
+void ComplementarityModel::DataScales(double* length, double* force) const {
+  const Vec zero = Vec::Zero(n_);
+  Vec w0;
+  InternalForce(zero, &w0);
+  SpMat jacobian;
+  Stiffness(zero, &jacobian);
+  const double typical_w = w0.lpNorm<Eigen::Infinity>();
+  const double jacobian_norm = (jacobian.cwiseAbs() * Vec::Ones(n_)).maxCoeff();
+  const bool sized = typical_w > 0.0 && std::isfinite(typical_w) && jacobian_norm > 0.0 &&
+                     std::isfinite(jacobian_norm);
+  *force = sized ? typical_w : 1.0;
+  *length = sized ? typical_w / jacobian_norm : 1.0;
+}
+
 double ComplementarityModel::NaturalResidual(const Vec& z) const {
   Vec w;
   InternalForce(z, &w);

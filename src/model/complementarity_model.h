@@ -10,8 +10,8 @@
 //   hess pi(u) = dF(u)    (Stiffness; = M),
 //   f = 0, sum_p r_p hess phi_p = 0.
 // With lambda = 0 the step equations (29)-(30) read F(z) + r = 0, i.e. r = -w <= 0, and (11)
-// is exactly the complementarity problem; the verdict (with L = R = 1) is then its natural
-// residual: eq_res = ||F(z) + r||_inf, comp_res = ||min(z, w)||_inf.
+// is exactly the complementarity problem; the verdict is then its natural residual:
+// eq_res = ||F(z) + r||_inf, comp_res = ||min(z / L, w / R)||_inf (L, R: DataScales).
 // There is an energy only when M is symmetric (pi = 1/2 z^T M z + q^T z); an NCP given by
 // callbacks has none.
 #pragma once
@@ -51,6 +51,13 @@ class ComplementarityModel final : public ContactModel {
   void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override;
   void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
   const Vec& load_pattern() const override { return load_; }
+
+  // The sizes of z and of w = F(z) the data imply, the default length and force scales L, R of
+  // a complementarity problem (docs/method.md section 2): R = ||F(0)||_inf (||q||_inf for an
+  // LCP), a typical w, and L = R / ||dF(0)||_inf (row-sum norm; ||M||_inf), the z that the
+  // Jacobian maps onto such a w. So g/L and r/R are O(1) for every formulation whatever units
+  // the data come in. Each is 1 when the data give no size (F(0) = 0 or dF(0) = 0).
+  void DataScales(double* length, double* force) const;
 
   // The complementarity residual of a candidate z: ||min(z, F(z))||_inf.
   double NaturalResidual(const Vec& z) const;

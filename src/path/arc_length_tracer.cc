@@ -38,9 +38,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
         AbandonBranchSwitch();  // not a failure of the path: it goes on along its branch
         continue;
       }
-      return Finish(Status::kFailed, "step " + std::to_string(step) + " failed the verdict after " +
-                                         std::to_string(options_.max_cutbacks) +
-                                         " cut-backs of the arc length");
+      return Finish(Status::kFailed, StepFailure(step, attempt));
     }
     if (leg->switches_branch()) EnterNewBranch();
     LocateKinksAndRedirect(*leg, &attempt);
@@ -51,7 +49,13 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
                     "stopped by the caller after step " + std::to_string(step));
     }
   }
-  return Finish(Status::kConverged, std::to_string(summary_.accepted_steps) + " steps accepted");
+  const std::string accepted = std::to_string(summary_.accepted_steps) + " steps accepted";
+  if (summary_.kinks_not_located > 0) {
+    return Finish(Status::kFailed, accepted + ", but " +
+                                       std::to_string(summary_.kinks_not_located) +
+                                       " kinks were not located (kinks.csv: verified, between)");
+  }
+  return Finish(Status::kConverged, accepted);
 }
 
 // The first heading is the tangent predictor at `initial`.
@@ -129,7 +133,7 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
   ++summary_.attempts;
   attempt.reversed = leg.Reversed(attempt.result.point, theta);
-  attempt.accepted = attempt.verdict.verified && !attempt.reversed;
+  attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
   return attempt;
 }
 
@@ -163,6 +167,8 @@ void ArcLengthTracer::LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* at
       kink_locator_.Locate(attempt->step, leg.origin().state, attempt->state, observer_);
   attempt->kinks = kinks.found;
   summary_.kinks += attempt->kinks;
+  summary_.kinks_not_located += kinks.not_located;
+  attempt->kink = kinks.nearest;
   if (!kinks.nearest) return;
   const Vec du_after = attempt->state.u - kinks.nearest->u;
   const double dl_after = attempt->state.lambda - kinks.nearest->lambda;
@@ -195,14 +201,26 @@ void ArcLengthTracer::Accept(const StepAttempt& attempt,
     observer_.OnCriticalPoint(point);
     if (point.switched) next_.branch_switch = point;
   }
-  at_.accepted = {attempt.state, attempt.stability,
-                  StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks}};
+  at_.accepted = {
+      attempt.state, attempt.stability,
+      StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks, attempt.kink}};
   summary_.final_state = attempt.state;
   ++summary_.accepted_steps;
   next_.theta = std::min(options_.arc_length, 2.0 * next_.theta);
   // A step leaving a bifurcation point starts there, not where this solve ended: this solve's
   // backend state is no start for it.
   next_.warm_state = next_.branch_switch ? std::any() : attempt.result.warm_state;
+}
+
+// Why the step failed: the verdict, or the time limit when the last cut-back ran into it.
+std::string ArcLengthTracer::StepFailure(int step, const StepAttempt& last) const {
+  const std::string after =
+      " after " + std::to_string(options_.max_cutbacks) + " cut-backs of the arc length";
+  if (last.result.status == Status::kTimeLimit) {
+    return "step " + std::to_string(step) + " ran into the time limit" + after + " (" +
+           last.result.message + ")";
+  }
+  return "step " + std::to_string(step) + " failed the verdict" + after;
 }
 
 bool ArcLengthTracer::InterruptedByCaller() const {

@@ -59,6 +59,7 @@ class ArcLengthTracer {
   void LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* attempt);
   std::vector<CriticalPointRecord> DetectCriticalPoints(const StepLeg& leg, StepAttempt* attempt);
   void Accept(const StepAttempt& attempt, const std::vector<CriticalPointRecord>& critical);
+  std::string StepFailure(int step, const StepAttempt& last) const;
   bool InterruptedByCaller() const;
   PathSummary Finish(Status status, std::string message);
 

@@ -34,17 +34,38 @@ std::optional<CriticalPointRecord> LimitPoint(const StepOrigin& origin, const St
 // simple bifurcation point only det A does. So a change of the count with no change of the
 // orientation is the limit point, and a change of the orientation is a bifurcation point (the
 // classical test; it holds when the two are a hair apart, as they are on P2).
-int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
-                const Vec& du, double dlambda, double w) {
-  const BorderedStiffness stiffness(model, scales, at);
+// The Schur factor w^2 dlambda + du^T K^-1 f of the bordered determinant at `at`; its sign is
+// also the sign of the load component of the path's tangent (K^-1 f, 1) oriented along
+// (du, dlambda). Empty when K cannot be factored.
+std::optional<double> SchurFactor(const BorderedStiffness& stiffness, const ContactModel& model,
+                                  const Vec& du, double dlambda, double w) {
   Vec tangent;
   if (stiffness.unstable_modes() < 0 ||
       !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
-    return 0;
+    return std::nullopt;
   }
-  const double schur = w * w * dlambda + du.dot(tangent);
+  return w * w * dlambda + du.dot(tangent);
+}
+
+int Sign(double x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
+
+int Orientation(const ContactModel& model, const ContactScales& scales, const State& at,
+                const Vec& du, double dlambda, double w) {
+  const BorderedStiffness stiffness(model, scales, at);
+  const std::optional<double> schur = SchurFactor(stiffness, model, du, dlambda, w);
+  if (!schur) return 0;
   const int det_sign = stiffness.unstable_modes() % 2 == 0 ? 1 : -1;
-  return schur > 0.0 ? det_sign : (schur < 0.0 ? -det_sign : 0);
+  return det_sign * Sign(*schur);
+}
+
+// The direction the load moves in along the path at `at` (oriented along (du, dlambda)):
+// +1, -1, or 0 when it cannot be told. It changes sign at a smooth limit point, where the
+// tangent's load component passes through zero.
+int LoadDirection(const ContactModel& model, const ContactScales& scales, const State& at,
+                  const Vec& du, double dlambda, double w) {
+  const BorderedStiffness stiffness(model, scales, at);
+  const std::optional<double> schur = SchurFactor(stiffness, model, du, dlambda, w);
+  return schur ? Sign(*schur) : 0;
 }
 
 // The direction to leave a bifurcation point along: the null vector there, made orthogonal to
@@ -86,6 +107,11 @@ std::vector<CriticalPointRecord> CriticalPointFinder::Find(const StepOrigin& ori
                                                            bool may_switch) const {
   std::vector<CriticalPointRecord> critical;
   if (std::optional<CriticalPointRecord> limit = LimitPoint(origin, taken)) {
+    if (limit->nonsmooth) {
+      PlaceAtTheKink(origin, taken, &*limit);
+    } else {
+      LocateLimitPoint(origin, taken, &*limit);
+    }
     critical.push_back(*limit);
   }
   if (origin.unstable_modes < 0 || taken.stability < 0 ||
@@ -202,6 +228,92 @@ CriticalPointFinder::PastTheChange CriticalPointFinder::BracketModeChange(
   }
   point->located = true;
   return past;
+}
+
+// Locates a smooth limit point by bisection on the sign of the load component of the path's
+// tangent (LoadDirection): at the origin the load still moves the way it did before the turn
+// when the limit point lies ahead, within this step; else it lies behind, within the previous
+// step, and the trials go back along the mirrored chord (-du, dlambda), the direction the path
+// came from near a turn of the load. Each trial is an arc-length step (33) from the origin,
+// judged by the verdict. The bracket is closed to limit_point_tolerance of the chord; the load
+// being stationary there, lambda is then exact to its square. Leaves `limit` at the accepted
+// state when the change cannot be bracketed.
+void CriticalPointFinder::LocateLimitPoint(const StepOrigin& origin, const StepAttempt& taken,
+                                           CriticalPointRecord* limit) const {
+  const double w = options_.lambda_weight;
+  const Vec& chord_u = taken.result.point.du;
+  const double chord_l = taken.result.point.dlambda;
+  const double chord = HNorm(chord_u, chord_l, w);
+  const int before = Sign(origin.previous->dlambda);  // the load's direction before the turn
+  const int at_origin = LoadDirection(model_, scales_, origin.state, chord_u, chord_l, w);
+  if (at_origin == 0 || !(chord > 0.0)) return;
+  const bool ahead = at_origin == before;
+  const Vec direction_u = ahead ? Vec(chord_u) : Vec(-chord_u);
+  auto trial_at = [&](double t) {
+    StepProblem problem{&model_, origin.state, StepConstraint::ArcLength(t, w), scales_};
+    StartPoint start;
+    start.kind = StartKind::kWarm;
+    start.du = direction_u * (t / chord);
+    start.dlambda = chord_l * (t / chord);
+    start.r = origin.state.r + (t / chord) * (taken.state.r - origin.state.r);
+    ++limit->bisections;
+    return SolveAndJudge(formulation_, problem, start, options_);
+  };
+  // The far end of the bracket: the accepted state ahead, a trial one chord back behind.
+  State far = taken.state;
+  if (!ahead) {
+    const JudgedStep back = trial_at(chord);
+    if (!SolvedAndVerified(back.result, back.verdict)) return;
+    far = back.state;
+  }
+  if (LoadDirection(model_, scales_, far, chord_u, chord_l, w) != -at_origin) return;
+  double lo = 0.0, hi = chord;
+  State near_state = origin.state;
+  Verdict near_verdict = limit->verdict;
+  Verdict far_verdict = limit->verdict;
+  while (hi - lo > kLimitPointTolerance * chord && limit->bisections < 80) {
+    const double t = 0.5 * (lo + hi);
+    const JudgedStep trial = trial_at(t);
+    if (!SolvedAndVerified(trial.result, trial.verdict)) {
+      limit->message +=
+          "; not located: a bisection step failed the verdict (" + trial.result.message + ")";
+      return;
+    }
+    if (LoadDirection(model_, scales_, trial.state, chord_u, chord_l, w) == at_origin) {
+      lo = t;
+      near_state = trial.state;
+      near_verdict = trial.verdict;
+    } else {
+      hi = t;
+      far = trial.state;
+      far_verdict = trial.verdict;
+    }
+  }
+  // Of the two ends, the one where the load went furthest in its direction before the turn.
+  const bool near_wins = before * (near_state.lambda - far.lambda) >= 0.0;
+  limit->state = near_wins ? near_state : far;
+  limit->verdict = near_wins ? near_verdict : far_verdict;
+  limit->located = true;
+  limit->message = "located by bisection on the sign of the tangent's load component";
+}
+
+// A limit point made by a contact change is where the load turns at a kink: of the kinks
+// located in the two steps around it, the one where the load went furthest in its direction
+// before the turn. Left at the accepted state when neither step's kink is at hand.
+void CriticalPointFinder::PlaceAtTheKink(const StepOrigin& origin, const StepAttempt& taken,
+                                         CriticalPointRecord* limit) const {
+  const int before = origin.previous->dlambda > 0.0 ? 1 : -1;
+  const State* kink = nullptr;
+  for (const std::optional<State>* candidate : {&origin.previous->kink, &taken.kink}) {
+    if (!candidate->has_value()) continue;
+    if (kink == nullptr || before * ((*candidate)->lambda - kink->lambda) > 0.0) {
+      kink = &**candidate;
+    }
+  }
+  if (kink == nullptr) return;
+  limit->state = *kink;
+  limit->located = true;  // the kink was located and verified (section 6)
+  limit->message = "the load parameter turned at a kink";
 }
 
 }  // namespace cb

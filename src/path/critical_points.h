@@ -34,6 +34,14 @@ class CriticalPointFinder {
     State state;
   };
 
+  // A smooth limit point is bracketed until the bracket is below this fraction of the chord:
+  // lambda is stationary there, so its error is of the order of the bracket squared.
+  static constexpr double kLimitPointTolerance = 1e-6;
+
+  void PlaceAtTheKink(const StepOrigin& origin, const StepAttempt& taken,
+                      CriticalPointRecord* limit) const;
+  void LocateLimitPoint(const StepOrigin& origin, const StepAttempt& taken,
+                        CriticalPointRecord* limit) const;
   bool ContactStatusChanged(const State& origin, const StepAttempt& taken) const;
   void LocateModeChanges(const StepOrigin& origin, const StepAttempt& taken, bool may_switch,
                          std::vector<CriticalPointRecord>* critical) const;

@@ -55,6 +55,7 @@ KinksOfStep KinkLocator::Locate(int step, const State& a, const State& b,
     const double from_a = HNorm(du, dl, w);
     const double to_b_norm = HNorm(to_b, dl_to_b, w);
     record.between = from_a <= 2.0 * chord && to_b_norm <= 2.0 * chord;
+    if (!(record.verdict.verified && record.between)) ++kinks.not_located;
     if (record.verdict.verified && record.between) {
       ++kinks.found;
       if (to_b_norm < nearest_distance) {

@@ -12,6 +12,7 @@ namespace cb {
 // The kinks located within one accepted step.
 struct KinksOfStep {
   int found = 0;                 // verified and on the path between the two states
+  int not_located = 0;           // solved for, but not verified or not between them
   std::optional<State> nearest;  // of those, the nearest to the state after the step
 };
 

@@ -1,6 +1,7 @@
 #include "path/path.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "path/arc_length_tracer.h"
@@ -22,8 +23,10 @@ bool PathOptions::IsValid(std::string* why) const {
     *why = "max_steps must be >= 1";
     return false;
   }
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
-    *why = "tolerance must be positive and finite";
+  if (!(tolerance > 0.0) || !(tolerance <= kMaxVerdictTolerance)) {
+    std::ostringstream range;
+    range << "tolerance must be in (0, " << kMaxVerdictTolerance << "]";
+    *why = range.str();
     return false;
   }
   if (max_cutbacks < 0) {
@@ -114,7 +117,7 @@ PathSummary SolveFixedLoad(const ContactModel& model, const ContactScales& scale
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
   RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
-  attempt.accepted = attempt.verdict.verified;
+  attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict);
   if (observer != nullptr) observer->OnAttempt(attempt);
 
   PathSummary summary;

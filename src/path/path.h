@@ -3,6 +3,7 @@
 // the common interface, and observes through PathObserver (no I/O here).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "model/contact_model.h"
@@ -23,7 +24,7 @@ struct PathOptions {
   double arc_length = 0.1;     // theta of (33)
   double lambda_weight = 1.0;  // w of ||(du, dlambda)||_H
   int max_steps = 100;         // accepted steps to take
-  double tolerance = 1e-8;     // verdict tolerance (docs/method.md section 7)
+  double tolerance = 1e-8;     // verdict tolerance, in (0, kMaxVerdictTolerance] (section 7)
   StartKind start = StartKind::kWarm;
   // A step that fails the verdict (or turns back) is retried with theta halved, at most this
   // many times; then the path stops with Status::kFailed. After an accepted step theta grows
@@ -54,9 +55,10 @@ struct StepAttempt {
   Verdict verdict;
   bool reversed = false;  // the answer turned back on the path (the guard rejected it)
   bool accepted = false;
-  State state;        // the state the attempt reached (base + increment)
-  int n_contact = 0;  // pairs in contact at `state` (CountContacts)
-  int kinks = 0;      // kinks located between the previous state and this one
+  State state;                // the state the attempt reached (base + increment)
+  int n_contact = 0;          // pairs in contact at `state` (CountContacts)
+  int kinks = 0;              // kinks located between the previous state and this one
+  std::optional<State> kink;  // of those, the one nearest this state
   // Unstable modes at `state` (stability.h: negative eigenvalues of the stiffness on the
   // motions that keep the closed contacts closed; 0 = stable); -1 when not computed.
   int stability = -1;
@@ -76,9 +78,11 @@ struct KinkRecord {
 };
 
 // A critical point of the path, found between accepted steps step - 1 and step:
-//  - kLimit: the load parameter turned (dlambda changed sign); `state` is the accepted state
-//    where it did; `nonsmooth` when a kink was located in one of the two steps around it
-//    (the report's point B of P2, a limit point made by a contact change);
+//  - kLimit: the load parameter turned (dlambda changed sign); a smooth one is located by
+//    bisection on the sign of the tangent's load component (`state`, `verdict`, `located`),
+//    else `state` is the accepted state where it turned; `nonsmooth` when a kink was located
+//    in one of the two steps around it (the report's point B of P2, a limit point made by a
+//    contact change), and then `state` is that kink;
 //  - kBifurcation: the number of unstable modes changed within a step whose contact status
 //    did not change, and the orientation of the path (the sign of the determinant of the
 //    step's Jacobian with its arc-length row) changed there too: the path crossed another
@@ -92,7 +96,7 @@ struct CriticalPointRecord {
   Kind kind = Kind::kLimit;
   bool nonsmooth = false;
   State state;
-  bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance
+  bool located = false;  // kBifurcation: bracketed to bifurcation_tolerance; kLimit: located
   int bisections = 0;
   Verdict verdict;
   Vec mode;               // kBifurcation: the null vector (unit norm)
@@ -115,6 +119,9 @@ struct PathSummary {
   int accepted_steps = 0;
   int attempts = 0;
   int kinks = 0;
+  // Kinks solved for (53) but not verified or not between their steps (kinks.csv says which):
+  // the path then ends as kFailed, whatever its steps did.
+  int kinks_not_located = 0;
   int limit_points = 0;
   int bifurcations = 0;
   int branch_switches = 0;

@@ -46,7 +46,7 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
     const StepPoint& ref = reference_step.increment;
     attempt.reversed = kind == ConstraintKind::kArcLength &&
                        HInner(point.du, point.dlambda, ref.du, ref.dlambda, w) <= 0.0;
-    attempt.accepted = attempt.verdict.verified && !attempt.reversed;
+    attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
     if (observer != nullptr) observer->OnAttempt(attempt);
     if (attempt.accepted) {
       ++summary.accepted_steps;

@@ -11,8 +11,9 @@ namespace cb {
 struct StepOrigin {
   // The step on the same branch that reached the origin.
   struct PreviousStep {
-    double dlambda = 0.0;  // its load increment: a change of sign is a limit point
-    int kinks = 0;         // kinks located within it
+    double dlambda = 0.0;       // its load increment: a change of sign is a limit point
+    int kinks = 0;              // kinks located within it
+    std::optional<State> kink;  // of those, the one nearest the origin
   };
 
   State state;

@@ -18,6 +18,11 @@ JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
   return judged;
 }
 
+bool SolvedAndVerified(const StepResult& result, const Verdict& verdict) {
+  return verdict.verified && result.status != Status::kTimeLimit &&
+         result.status != Status::kStoppedByCaller;
+}
+
 void RecordJudgedStep(JudgedStep judged, StepAttempt* attempt) {
   attempt->result = std::move(judged.result);
   attempt->verdict = judged.verdict;

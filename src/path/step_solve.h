@@ -19,6 +19,11 @@ struct JudgedStep {
 JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
                          const StartPoint& start, const PathOptions& options);
 
+// A path step is taken only when its solve finished and its answer is verified: a solve stopped
+// at the time limit (or by the caller) fails the step whatever point it stopped at, so the
+// machine's speed never decides whether the path moves on.
+bool SolvedAndVerified(const StepResult& result, const Verdict& verdict);
+
 // Moves `judged` into the attempt's result, verdict, state and n_contact.
 void RecordJudgedStep(JudgedStep judged, StepAttempt* attempt);
 

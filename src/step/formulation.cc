@@ -1,5 +1,6 @@
 #include "step/formulation.h"
 
+#include <sstream>
 #include <stdexcept>
 
 #include "core/timer.h"
@@ -7,6 +8,12 @@
 namespace cb {
 
 const char* ToString(StartKind kind) { return kind == StartKind::kWarm ? "warm" : "cold"; }
+
+std::string TimeLimitMessage(double time_limit_s) {
+  std::ostringstream text;
+  text << "time limit of " << time_limit_s << " s reached";
+  return text.str();
+}
 
 bool Formulation::Accepts(const StepProblem& step, std::string* why) const {
   std::string reason;

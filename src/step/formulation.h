@@ -63,6 +63,10 @@ struct SolveControls {
   std::function<bool()> interrupted;  // polled between iterations; true stops the solve
 };
 
+// The reason every backend gives for a solve stopped at SolveControls::time_limit_s
+// (Status::kTimeLimit), so the records say the same thing whoever ran out of time.
+std::string TimeLimitMessage(double time_limit_s);
+
 class Formulation {
  public:
   virtual ~Formulation() = default;

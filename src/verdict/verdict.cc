@@ -37,6 +37,7 @@ Verdict Judge(const StepProblem& step, const StepPoint& point, double tolerance)
     v.comp_res = std::max(v.comp_res, std::abs(std::min(gs, -rs)));
     v.feas_res = std::max({v.feas_res, -gs, rs});
   }
+  v.tolerance = tolerance;
   v.step_res = std::abs(StepConstraintValue(step, point.du, point.dlambda, g, point.r));
   // NaN compares false: a non-finite residual never verifies.
   v.verified = v.eq_res <= tolerance && v.comp_res <= tolerance && v.feas_res <= tolerance &&

@@ -7,6 +7,11 @@
 
 namespace cb {
 
+// The loosest tolerance a verdict may be asked for (docs/method.md section 7). The residuals are
+// relative or scaled, so beyond this an answer could be "verified" whose equilibrium error is
+// visible at the accuracy of a plot.
+constexpr double kMaxVerdictTolerance = 1e-4;
+
 struct Verdict {
   // ||grad pi(u) - lambda f - grad phi(u)^T r||_inf / max(1, ||lambda f||_inf), (9).
   double eq_res = 0.0;
@@ -17,7 +22,8 @@ struct Verdict {
   double feas_res = 0.0;
   // |c| of the step constraint (StepConstraintValue; dimensionless), with g from the model.
   double step_res = 0.0;
-  bool verified = false;  // all four <= tolerance (and finite)
+  bool verified = false;   // all four <= tolerance (and finite)
+  double tolerance = 0.0;  // the tolerance the answer was judged to
 };
 
 // Judges `point` as an answer to `step`. `point.g` is not used: gaps are recomputed from u.
