@@ -3,11 +3,12 @@
 // reconstruction choice of docs/problems.md is a parameter here.
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
 #include "model/truss.h"
+#include "problems/arch_areas.h"
+#include "problems/arch_layout.h"
 #include "problems/builders.h"
 
 namespace cb {
@@ -49,6 +50,26 @@ Parameters ArchDefaults(double half_span, double half_angle_deg, int upper_nodes
   p.DeclareInteger("steps", steps, "arc-length steps of the default path", 1, 10000000);
   // Gaps of the order of the clearance H2, reactions of the order of the load unit (1 MN).
   DeclareScaleParameters(0.1, 1000.0, &p);
+  // The readings of the report's figure (docs/problems.md, "Other readings"); the defaults are
+  // the one that gives the report's d, nc and areas.
+  p.DeclareChoice("topology", "warren",
+                  "reconstruction: warren = a lower node at each panel's mid-angle, two diagonals "
+                  "from it; pratt, howe, x-braced = a lower node under each upper node, verticals, "
+                  "diagonals falling towards the centre / rising towards it / both",
+                  ArchTopologyNames());
+  p.DeclareChoice("area_groups", "from-supports",
+                  "reconstruction: the member groups (1), (2), ... of area_first, area_first - "
+                  "area_step, ...: panels counted from-supports or from-centre, uniform (all "
+                  "area_first), by-member-type (upper chord, lower chord, diagonals, posts)",
+                  AreaGroupsNames());
+  p.DeclareReal("centre_area", 0.0,
+                "area of the centre panel's members (largest group counted from the supports), "
+                "overriding area_groups; 0 keeps the rule's [m^2]",
+                0.0, 1e6);
+  p.DeclareChoice("lower_placement", "radial",
+                  "reconstruction: radial = lower layer on radius R + layer_gap about the common "
+                  "centre; vertical = layer_gap straight below the upper circle (same H1)",
+                  LowerPlacementNames());
   return p;
 }
 
@@ -62,64 +83,29 @@ Parameters ArchCurvedDefaults() {
 }
 
 Problem BuildArch(const Parameters& p) {
-  const double omega = p.Real("half_angle_deg") * std::numbers::pi / 180.0;
-  const double half_span = p.Real("half_span");
-  const double radius = half_span / std::sin(omega);  // R of the upper layer
-  const double layer_gap = p.Real("layer_gap");
-  const int n_upper = p.Integer("upper_nodes");
-  const int panels = n_upper - 1;
-  const double panel_angle = 2.0 * omega / panels;
+  ArchCircle circle;
+  circle.omega = p.Real("half_angle_deg") * std::numbers::pi / 180.0;
+  circle.radius = p.Real("half_span") / std::sin(circle.omega);  // R of the upper layer
+  circle.layer_gap = p.Real("layer_gap");
+  circle.upper_nodes = p.Integer("upper_nodes");
   // The common centre lies above the truss so that the ends of the upper layer are at y = 0.
-  const double centre_y = radius * std::cos(omega);
-  const double depth = radius * (1.0 - std::cos(omega)) + layer_gap;  // H1
+  circle.centre_y = circle.radius * std::cos(circle.omega);
+  const double depth = circle.radius * (1.0 - std::cos(circle.omega)) + circle.layer_gap;  // H1
 
-  // Nodes: upper layer 0 .. n_upper-1 (left to right), then the lower layer: left end, the
-  // mid-angle node of each panel, right end.
-  const int n_lower = panels + 2;
-  Mat xy(n_upper + n_lower, 2);
-  auto place = [&](int node, double angle, double r) {
-    xy.row(node) << r * std::sin(angle), centre_y - r * std::cos(angle);
-  };
-  for (int i = 0; i < n_upper; ++i) place(i, -omega + i * panel_angle, radius);
-  const int lower0 = n_upper;
-  place(lower0, -omega, radius + layer_gap);
-  for (int k = 0; k < panels; ++k) {
-    place(lower0 + 1 + k, -omega + (k + 0.5) * panel_angle, radius + layer_gap);
-  }
-  place(lower0 + n_lower - 1, omega, radius + layer_gap);
-
-  // Members: upper chord, lower chord, two diagonals per panel, two end posts.
-  std::vector<std::pair<int, int>> links;
-  for (int i = 0; i + 1 < n_upper; ++i) links.emplace_back(i, i + 1);
-  for (int k = 0; k + 1 < n_lower; ++k) links.emplace_back(lower0 + k, lower0 + k + 1);
-  for (int k = 0; k < panels; ++k) {
-    links.emplace_back(lower0 + 1 + k, k);
-    links.emplace_back(lower0 + 1 + k, k + 1);
-  }
-  links.emplace_back(lower0, 0);
-  links.emplace_back(lower0 + n_lower - 1, n_upper - 1);
-
-  // Cross-section groups: a member's group is 1 + floor(angular distance of its midpoint from
-  // the nearer end / panel angle). Members whose midpoint lies on a panel boundary (lower chord)
-  // sit exactly on an integer; the small relative tolerance makes that integer win over
-  // rounding.
-  const double area_first = p.Real("area_first");
-  const double area_step = p.Real("area_step");
+  const ArchLayout layout = LayOutArch(circle, ArchTopologyNamed(p.Choice("topology")),
+                                       LowerPlacementNamed(p.Choice("lower_placement")));
+  const AreaRule rule{AreaGroupsNamed(p.Choice("area_groups")), p.Real("area_first"),
+                      p.Real("area_step"), p.Real("centre_area")};
+  const std::vector<double> areas = MemberAreas(layout, circle, rule);
   std::vector<TrussMember> members;
-  for (const auto& [i, j] : links) {
-    const double mx = 0.5 * (xy(i, 0) + xy(j, 0));
-    const double my = 0.5 * (xy(i, 1) + xy(j, 1));
-    const double angle = std::atan2(mx, centre_y - my);
-    const double distance = omega - std::abs(angle);
-    const int group = 1 + static_cast<int>(std::floor(distance / panel_angle + 1e-9));
-    const double area = area_first - (group - 1) * area_step;
-    if (!(area > 0.0)) {
-      throw std::invalid_argument(
-          "area_first - (group - 1) * area_step is not positive for group " +
-          std::to_string(group));
-    }
-    members.push_back({i, j, p.Real("youngs_modulus"), area});
+  for (std::size_t m = 0; m < layout.links.size(); ++m) {
+    members.push_back(
+        {layout.links[m].first, layout.links[m].second, p.Real("youngs_modulus"), areas[m]});
   }
+  const Mat& xy = layout.xy;
+  const int n_upper = circle.upper_nodes;
+  const int lower0 = layout.first_lower;
+  const int n_lower = layout.lower_nodes;
 
   // Supports: (a) = left end of the upper layer, y fixed (roller); (b) = right end, pinned.
   const int node_a = 0;
