@@ -2,11 +2,14 @@
 # The main job: set up (install, build), then regenerate results/:
 #   results/block/, arch-flat/, arch-curved/   the report's three examples: records
 #                                              (CSV), saved states (CSV, VTK)
+#   results/readings/                          P2 and P3 under other readings of the report's
+#                                              figure (scripts/run_readings.sh, about a minute)
 #   results/compare/                           the formulation comparison (scripts/run_compare.sh)
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
 #   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
 # A run that fails keeps its records and the job goes on; the reports say what failed.
-# Environment: SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their old files) alone.
+# Environment: SKIP_READINGS=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their old
+# files) alone.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
@@ -45,6 +48,9 @@ for solver in newton quasi-newton; do
       --save-every 200
 done
 
+if [[ "${SKIP_READINGS:-0}" != 1 ]]; then
+  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_readings.sh" || status=3
+fi
 if [[ "${SKIP_COMPARE:-0}" != 1 ]]; then
   SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_compare.sh" || status=3
 fi
