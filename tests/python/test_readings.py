@@ -1,0 +1,127 @@
+"""The measures of results/plotlib/readings.py on small hand-made records whose answers are worked
+out by hand. Run: /usr/bin/python3 -m unittest discover -s tests/python."""
+import math
+import os
+import sys
+import unittest
+
+import pandas as pd
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "results"))
+from plotlib import readings as r  # noqa: E402
+
+
+def steps_and_iterations():
+    """Three steps. Step 1: one attempt, residuals 1e-5, 5e-10, 1e-14 (3 iterations at 1e-10, 2
+    at 3e-9). Step 2: a rejected attempt 0 then attempt 1 with 1e-4, 2e-9, 1e-13. Step 3: a
+    stagnated step the verdict accepted, never below 3e-9 (4 iterations either way)."""
+    steps = pd.DataFrame({"step": [1, 2, 2, 3], "attempt": [0, 0, 1, 0],
+                          "accepted": [1, 0, 1, 1], "iterations": [3, 7, 3, 4]})
+    rows = [(1, 0, 1, 1e-5), (1, 0, 2, 5e-10), (1, 0, 3, 1e-14),
+            (2, 0, 1, 1e-9),  # the rejected attempt: must not count
+            (2, 1, 1, 1e-4), (2, 1, 2, 2e-9), (2, 1, 3, 1e-13),
+            (3, 0, 1, 1e-3), (3, 0, 2, 1e-6), (3, 0, 3, 1e-8), (3, 0, 4, 5e-9)]
+    iterations = pd.DataFrame(rows, columns=["step", "attempt", "iteration", "residual_inf"])
+    return steps, iterations
+
+
+class Rescore(unittest.TestCase):
+    def test_hand_counted(self):
+        steps, iterations = steps_and_iterations()
+        self.assertEqual(r.rescored_iterations(steps, iterations, 3e-9).tolist(), [2, 2, 4])
+
+    def test_the_suites_own_tolerance_gives_the_recorded_counts(self):
+        steps, iterations = steps_and_iterations()
+        self.assertEqual(r.rescored_iterations(steps, iterations, 1e-10).tolist(), [3, 3, 4])
+
+    def test_a_looser_test_never_needs_more_iterations(self):
+        steps, iterations = steps_and_iterations()
+        counts = [r.rescored_iterations(steps, iterations, t).tolist()
+                  for t in (1e-10, 1e-9, 3e-9, 1e-7, 1e-2)]
+        for tight, loose in zip(counts, counts[1:]):
+            self.assertTrue(all(b <= a for a, b in zip(tight, loose)))
+        self.assertEqual(counts[-1], [1, 1, 1])
+
+
+class TableDistance(unittest.TestCase):
+    def test_same_shape_is_zero_whatever_the_totals(self):
+        self.assertEqual(r.table_distance({"3": 2, "4": 1}, {"3": 200, "4": 100}), 0.0)
+
+    def test_disjoint_is_one(self):
+        self.assertEqual(r.table_distance({"2": 5}, {"3": 7, "4": 1}), 1.0)
+
+    def test_hand_computed(self):
+        # p = (0.5, 0.5, 0), q = (0.75, 0, 0.25): 1/2 (0.25 + 0.5 + 0.25) = 0.5.
+        self.assertAlmostEqual(r.table_distance({"3": 1, "4": 1}, {"3": 3, "5": 1}), 0.5)
+
+    def test_symmetric_and_empty(self):
+        a, b = {"3": 10, "4": 3, "7": 1}, {"3": 1081, "4": 379, "5": 100}
+        self.assertAlmostEqual(r.table_distance(a, b), r.table_distance(b, a))
+        self.assertTrue(math.isnan(r.table_distance({}, b)))
+
+    def test_binned_uses_the_report_bins(self):
+        self.assertEqual(r.binned([2, 3, 3, 12, 15, 60]), {"2": 1, "3": 2, "12": 1, "13-20": 1,
+                                                           "> 50": 1})
+
+
+class CriticalPoints(unittest.TestCase):
+    def critical(self, rows):
+        return {"critical": pd.DataFrame(rows, columns=["step", "kind", "nonsmooth", "lambda"])}
+
+    def test_c_a_hair_before_b_in_the_same_step(self):
+        run = self.critical([(914, "limit", 0, 89.83727577), (914, "bifurcation", 0, 89.83727572)])
+        b, c, first = r.critical_points(run)
+        self.assertEqual(b["kind"], "limit")
+        self.assertEqual(first["kind"], "bifurcation")
+        self.assertTrue(r.order_of_b_and_c(b, c).startswith("C before B"))
+
+    def test_b_then_c_and_an_earlier_instability(self):
+        run = self.critical([(628, "stability_change", 1, 61.9), (886, "limit", 1, 86.97),
+                             (990, "bifurcation", 0, 77.5)])
+        b, c, first = r.critical_points(run)
+        self.assertEqual(r.order_of_b_and_c(b, c), "B before C (steps 886, 990)")
+        self.assertEqual(first["step"], 628)
+
+    def test_missing(self):
+        self.assertEqual(r.critical_points({"critical": None}), (None, None, None))
+        self.assertEqual(r.order_of_b_and_c(None, None), "neither on the path")
+
+
+class DescribePair(unittest.TestCase):
+    def test_p2_pair_order(self):
+        # P2: 28 inner upper nodes, then 31 lower nodes against each obstacle (nc = 90).
+        self.assertEqual(r.describe_pair(0, 90, 30), "upper node 1 / upper obstacle")
+        self.assertEqual(r.describe_pair(28 + 15, 90, 30), "lower node centre / upper obstacle")
+        self.assertEqual(r.describe_pair(59 + 15, 90, 30), "lower node centre / lower obstacle")
+        self.assertEqual(r.describe_pair(59 + 14, 90, 30),
+                         "lower node 1 from the centre / lower obstacle")
+
+
+class P2Measures(unittest.TestCase):
+    def test_kinks_before_an_angular_b_and_its_contact_change(self):
+        # B turns at a kink located between steps 885 and 886: two symmetric lower nodes, two
+        # from the centre, change contact with the floor there (pairs 59 + 13 and 59 + 17).
+        lam_b = 86.97447562191338
+        run = {
+            "steps": pd.DataFrame({"step": [1, 2, 3], "accepted": [1, 1, 1],
+                                   "iterations": [3, 3, 2]}),
+            "critical": pd.DataFrame([(628, "stability_change", 1, 61.9),
+                                      (886, "limit", 1, lam_b)],
+                                     columns=["step", "kind", "nonsmooth", "lambda"]),
+            "kinks": pd.DataFrame([(8, 74, 0.42, 1, 1), (885, 72, lam_b, 1, 1),
+                                   (885, 76, lam_b, 1, 1), (900, 70, 80.0, 1, 1),
+                                   (950, 71, 70.0, 0, 1)],  # not verified: not counted
+                                  columns=["step", "pair", "lambda", "verified", "between"]),
+            "parameters": pd.DataFrame({"name": ["upper_nodes", "num_pairs"],
+                                        "value": ["30", "90"]}),
+        }
+        m = r.p2_measures(run)
+        self.assertEqual(m["kinks"], 4)
+        self.assertEqual(m["kinks_before_B"], 3)
+        self.assertEqual(m["B_pair"], "lower node 2 from the centre / lower obstacle (x2)")
+        self.assertEqual(m["instability_before_B"]["step"], 628)
+        self.assertEqual(m["order"], "B only (no C on the path)")
+
+
+if __name__ == "__main__":
+    unittest.main()
