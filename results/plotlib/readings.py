@@ -250,13 +250,16 @@ def _table_1(results_dir, index, lines):
               "%g / %g | most iterations at %g |" % (SUITE_TOL, REPORT_LIKE_TOL, SUITE_TOL,
                                                      REPORT_LIKE_TOL, SUITE_TOL),
               "|---|---|---|---|---|---|"]
+    found = {}
     for solver in ("newton", "quasi-newton"):
         for row, run in _runs(results_dir, index, "arch-flat", solver):
             strict, loose = table_1_measures(run, SUITE_TOL), table_1_measures(run, REPORT_LIKE_TOL)
+            found[(row["reading"], solver)] = (strict, loose)
             lines.append("| %s | %s | %s | %d / %d | %.1f%% / %.1f%% | %d |" % (
                 row["reading"], solver, _path_text(strict, row, 2000), strict["two"],
                 loose["two"], 100 * strict["at_most_4"], 100 * loose["at_most_4"], strict["max"]))
     lines.append("")
+    return found
 
 
 def _table_2(results_dir, index, lines):
@@ -313,8 +316,9 @@ def _invariance_table(results_dir, index, lines):
     rows = index[index["dir"].str.startswith("invariance")]
     default = index[(index["reading"] == "default") & (index["problem"] == "arch-flat") &
                     (index["solver"] == "newton")]
+    found = {}
     if not len(rows):
-        return
+        return found
     lines += ["The default P2 over the same 200 units of arc length at other arc lengths, and in "
               "the printed load unit (kN) with E = 20 MPa (the path depends only on load / EA):",
               "", "| run | settings | steps | kinks before B / over the path | B |",
@@ -324,10 +328,12 @@ def _invariance_table(results_dir, index, lines):
         if run is None or run["steps"] is None:
             continue
         m = p2_measures(run)
+        found[row["reading"]] = (m["kinks_before_B"], m["kinks"])
         lines.append("| %s | %s | %s | %s / %d | %s |" % (
             row["reading"], row["settings"] or "(defaults)", _path_text(m, row, m["steps"]),
             "-" if m["kinks_before_B"] is None else m["kinks_before_B"], m["kinks"], _b_text(m)))
     lines.append("")
+    return found
 
 
 def _figure(results_dir, index, measured, distances, sweep):
@@ -374,6 +380,66 @@ def _figure(results_dir, index, measured, distances, sweep):
     return rep._save(fig, results_dir, "readings.png")
 
 
+def _names(readings):
+    return ", ".join(readings) if readings else "none"
+
+
+def what_the_readings_show(measured, invariance, table_1, distances):
+    """The findings of the study, from its measures: which readings give the report's B and C,
+    the kinks and their invariances, and the two tables against the stopping test."""
+    out = ["What the readings show:", ""]
+    if measured:
+        angular = [r for r, m in measured.items() if m["B"] is not None and m["B"]["nonsmooth"]]
+        b_first = [r for r, m in measured.items() if m["order"].startswith("B before C")]
+        clean = [r for r in angular if r in b_first and measured[r]["instability_before_B"] is None]
+        out.append("- B at a kink (a contact change, as in the report): %s. B before C (the "
+                   "report's order): %s. Both, with no instability before B: %s." % (
+                       _names(angular), _names(b_first), _names(clean)))
+        for r in angular:
+            m = measured[r]
+            before = m["instability_before_B"]
+            first = ""
+            if before is not None:
+                kind = before["kind"].replace("_", " ")
+                first = "; a %s comes first, at step %d" % (kind, before["step"])
+            out.append("  - %s: B at lambda %.3f%s%s%s." % (
+                r, m["B"]["lambda"], " (%s)" % m["B_pair"] if m["B_pair"] else "", first,
+                "; the path stops after %d steps" % m["steps"] if m["steps"] < 2000 else ""))
+        default = measured.get("default")
+        if default is not None and default["B"] is not None:
+            out.append("- The default reading: B %s, %s." % (
+                "at a kink" if default["B"]["nonsmooth"] else "smooth", default["order"]))
+        most = max(measured.items(), key=lambda item: item[1]["kinks"])
+        out.append("- Kinks over the traced path: %d to %d (most: %s); the report locates %d.%s"
+                   % (min(m["kinks"] for m in measured.values()), most[1]["kinks"], most[0],
+                      rep.REPORT_P2["kinks"],
+                      " No reading comes near it." if 2 * most[1]["kinks"] < rep.REPORT_P2["kinks"]
+                      else ""))
+    if invariance:
+        counts = sorted(set(invariance.values()), key=str)
+        out.append("- Kinks before B / over the path in the invariance table: %s: %s." % (
+            " or ".join("%s / %d" % c for c in counts),
+            "the same at every arc length and in either load unit" if len(counts) == 1
+            else "they depend on the arc length or the load unit"))
+    newton, qn = table_1.get(("default", "newton")), table_1.get(("default", "quasi-newton"))
+    if newton and qn:
+        out.append("- Table 1 (2 iterations at 273 steps): the default P2 has %d two-iteration "
+                   "steps with Newton at the suite's stopping test %g, %d with quasi-Newton; "
+                   "rescored at %g, %d and %d. The count is a property of the solver and the "
+                   "stopping test more than of the truss." % (
+                       newton[0]["two"], SUITE_TOL, qn[0]["two"], REPORT_LIKE_TOL,
+                       newton[1]["two"], qn[1]["two"]))
+    if "default" in distances:
+        strict, loose = distances["default"]
+        best = min(distances.items(), key=lambda item: item[1][0])
+        out.append("- Table 2: the default P3 is %.3f from the report's histogram at %g (the "
+                   "closest reading: %s, %.3f) and %.3f at %g: one stopping test does not fit "
+                   "both tables." % (strict, SUITE_TOL, best[0], best[1][0], loose,
+                                     REPORT_LIKE_TOL))
+    out.append("")
+    return out
+
+
 def section(results_dir):
     """The REPORT.md section of the readings study, or None when its records are absent."""
     index = _index(results_dir)
@@ -389,11 +455,12 @@ def section(results_dir):
              "iteration of each accepted step that meets it (iterations.csv)."
              % (COMMAND, REPORT_LIKE_TOL, SUITE_TOL), ""]
     measured = _critical_points_table(results_dir, index, lines)
-    _invariance_table(results_dir, index, lines)
-    _table_1(results_dir, index, lines)
+    invariance = _invariance_table(results_dir, index, lines)
+    table_1 = _table_1(results_dir, index, lines)
     distances = _table_2(results_dir, index, lines)
     sweep = _sweep(results_dir, index, lines)
     if measured or distances:
         path = _figure(results_dir, index, measured, distances, sweep)
         lines += ["![Readings of P2 and P3](%s)" % path, ""]
+    lines += what_the_readings_show(measured, invariance, table_1, distances)
     return lines

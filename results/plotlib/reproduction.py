@@ -376,15 +376,18 @@ def p2(results_dir, lines):
                          d["lambda"], d["control_disp"], d["branch"]))
     lines.append("")
     if b is not None and c is not None:
-        lines.append("The suite's B is %s; C lies %s. The report's B is a kink made by a contact "
-                     "change with C after it: the reconstructed geometry (docs/problems.md) "
-                     "differs in this detail, and the suite says so rather than forcing it." % (
+        c_first = (c["step"], c["lambda"]) < (b["step"], b["lambda"])
+        lines.append("The suite's B is %s; C lies a hair %s B (%.1e apart in lambda: the "
+                     "buckling of a panel near each support, a symmetric and an antisymmetric "
+                     "combination of two weakly coupled modes). The report's B is a kink made by "
+                     "a contact change with C after it, and it locates %d kinks against the "
+                     "suite's %d. Whether another reading of the report's figure gives that, and "
+                     "how the kinks and Table 1's counts depend on the arc length, the load unit "
+                     "and the stopping test, is measured in \"Readings of the report's figure\" "
+                     "(when its records exist; `bash scripts/run_readings.sh`)." % (
                          "at a kink" if b["nonsmooth"] else "a smooth limit point (no contact "
-                         "change within a step of it)",
-                         "a hair past B (the two critical points are %.1e apart in lambda: the "
-                         "buckling of a panel near each support, a symmetric and an antisymmetric "
-                         "combination of two weakly coupled modes)"
-                         % abs(c["lambda"] - b["lambda"])))
+                         "change within a step of it)", "before" if c_first else "past",
+                         abs(c["lambda"] - b["lambda"]), REPORT_P2["kinks"], kinks))
         lines.append("")
     labels = {"B": (b, "s"), "C": (c, "D"), "D": (d, "o")}
     path = _path_figure(results_dir, r, "P2 arch-flat, implicit-fb, Newton: equilibrium path "

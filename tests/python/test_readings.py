@@ -123,5 +123,29 @@ class P2Measures(unittest.TestCase):
         self.assertEqual(m["order"], "B only (no C on the path)")
 
 
+class WhatTheReadingsShow(unittest.TestCase):
+    def measures(self, nonsmooth, order, kinks, instability=None):
+        b = pd.Series({"step": 900, "lambda": 80.0, "nonsmooth": nonsmooth})
+        return {"B": b, "order": order, "kinks": kinks, "instability_before_B": instability,
+                "B_pair": None, "steps": 2000}
+
+    def test_a_reading_with_the_reports_b_and_c_is_named(self):
+        measured = {"default": self.measures(0, "C before B, 5.0e-08 apart in lambda", 38),
+                    "a": self.measures(1, "B before C (steps 900, 950)", 40),
+                    "b": self.measures(1, "B before C (steps 900, 950)", 30,
+                                       pd.Series({"kind": "stability_change", "step": 600}))}
+        text = "\n".join(r.what_the_readings_show(measured, {"x": (19, 38), "y": (19, 38)},
+                                                  {}, {}))
+        self.assertIn("B at a kink (a contact change, as in the report): a, b.", text)
+        self.assertIn("with no instability before B: a.", text)
+        self.assertIn("a stability change comes first, at step 600", text)
+        self.assertIn("Kinks over the traced path: 30 to 40 (most: a)", text)
+        self.assertIn("19 / 38: the same at every arc length", text)
+
+    def test_kinks_that_vary_are_said_to(self):
+        text = "\n".join(r.what_the_readings_show({}, {"x": (19, 38), "y": (20, 39)}, {}, {}))
+        self.assertIn("they depend on the arc length or the load unit", text)
+
+
 if __name__ == "__main__":
     unittest.main()
