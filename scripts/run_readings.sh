@@ -15,7 +15,7 @@
 # settings, exit status. A run that fails keeps its records and the study goes on; the report says where the
 # path stopped. results/plot.py then writes the section (results/plotlib/readings.py).
 #
-# Run time on the 2-core machine of results/README.md: under a minute (each run 1-3 s).
+# Run time on the 2-core machine of results/README.md: about a minute (each run 1-3 s).
 # Usage: scripts/run_readings.sh
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), QUICK=1 for 100 steps
 # per run (a check of the pipeline, not a result), SKIP_SETUP=1 to use an existing build.
@@ -45,7 +45,11 @@ run() {  # run READING PROBLEM SOLVER SUBDIR "KEY=VALUE ..."
 }
 
 # reading | P2 settings | P3 settings (uniform: the mean of the default areas, so that the
-# truss's stiffness and hence the load scale stay comparable).
+# truss's stiffness and hence the load scale stay comparable). The last two combine an aligned
+# topology with the vertical placement: of all combinations of topology, placement and area
+# rule, the two that make B a kink (docs/findings.md).
+howe_vertical="topology=howe lower_placement=vertical"
+x_vertical="topology=x-braced lower_placement=vertical"
 readings=(
   "default||"
   "centre-thinned|centre_area=0.045|centre_area=0.045"
@@ -56,6 +60,8 @@ readings=(
   "uniform|area_groups=uniform area_first=0.19|area_groups=uniform area_first=0.39"
   "by-member-type|area_groups=by-member-type|area_groups=by-member-type"
   "vertical|lower_placement=vertical|lower_placement=vertical"
+  "howe-vertical|$howe_vertical|$howe_vertical"
+  "x-braced-vertical|$x_vertical|$x_vertical"
 )
 for entry in "${readings[@]}"; do
   IFS='|' read -r reading p2 p3 <<<"$entry"
