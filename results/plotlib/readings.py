@@ -76,7 +76,9 @@ def describe_pair(pair, num_pairs, upper_nodes):
     if pair < inner_upper:
         return "upper node %d / upper obstacle" % (pair + 1)
     k = (pair - inner_upper) % lower
-    where = "centre" if 2 * k + 1 == lower else ("%d from the centre" % abs(k - lower // 2))
+    # In node spacings: the aligned topologies have no centre node, their middle two are 0.5 off.
+    off = abs(2 * k + 1 - lower) / 2.0
+    where = "centre" if off == 0 else "%g from the centre" % off
     obstacle = "upper" if pair < inner_upper + lower else "lower"
     return "lower node %s / %s obstacle" % (where, obstacle)
 
@@ -210,7 +212,10 @@ def _instability_text(m):
     i = m["instability_before_B"]
     if i is None:
         return "none"
-    return "%s at step %d" % (i["kind"].replace("_", " "), i["step"])
+    text = "%s at step %d" % (i["kind"].replace("_", " "), i["step"])
+    if i["step"] == m["B"]["step"]:
+        text += ", %.1e below B in lambda" % (m["B"]["lambda"] - i["lambda"])
+    return text
 
 
 def _runs(results_dir, index, problem, solver):
@@ -398,10 +403,7 @@ def what_the_readings_show(measured, invariance, table_1, distances):
         for r in angular:
             m = measured[r]
             before = m["instability_before_B"]
-            first = ""
-            if before is not None:
-                kind = before["kind"].replace("_", " ")
-                first = "; a %s comes first, at step %d" % (kind, before["step"])
+            first = "; first a %s" % _instability_text(m) if before is not None else ""
             out.append("  - %s: B at lambda %.3f%s%s%s." % (
                 r, m["B"]["lambda"], " (%s)" % m["B_pair"] if m["B_pair"] else "", first,
                 "; the path stops after %d steps" % m["steps"] if m["steps"] < 2000 else ""))

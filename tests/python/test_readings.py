@@ -96,6 +96,13 @@ class DescribePair(unittest.TestCase):
         self.assertEqual(r.describe_pair(59 + 14, 90, 30),
                          "lower node 1 from the centre / lower obstacle")
 
+    def test_aligned_pairs_are_named_symmetrically(self):
+        # pratt, howe, x-braced in P2: 30 lower nodes, none at the centre (nc = 28 + 60).
+        self.assertEqual(r.describe_pair(58 + 14, 88, 30), "lower node 0.5 from the centre / "
+                         "lower obstacle")
+        self.assertEqual(r.describe_pair(58 + 15, 88, 30), r.describe_pair(58 + 14, 88, 30))
+        self.assertEqual(r.describe_pair(58 + 12, 88, 30), r.describe_pair(58 + 17, 88, 30))
+
 
 class P2Measures(unittest.TestCase):
     def test_kinks_before_an_angular_b_and_its_contact_change(self):
@@ -138,7 +145,7 @@ class WhatTheReadingsShow(unittest.TestCase):
                                                   {}, {}))
         self.assertIn("B at a kink (a contact change, as in the report): a, b.", text)
         self.assertIn("with no instability before B: a.", text)
-        self.assertIn("a stability change comes first, at step 600", text)
+        self.assertIn("first a stability change at step 600", text)
         self.assertIn("Kinks over the traced path: 30 to 40 (most: a)", text)
         self.assertIn("19 / 38: the same at every arc length", text)
 
