@@ -346,9 +346,11 @@ def _figure(results_dir, index, measured, distances, sweep):
     stopping tests, and the default's 2-iteration steps over the stopping tests of the sweep."""
     fig, (paths, table_2, table_1) = plt.subplots(
         1, 3, figsize=(16, 4.8), gridspec_kw={"width_ratios": [3, 2, 2]})
-    for row, run in _runs(results_dir, index, "arch-flat", "newton"):
+    colours = plt.get_cmap("tab20").colors  # more readings than the default cycle's 10 colours
+    for i, (row, run) in enumerate(_runs(results_dir, index, "arch-flat", "newton")):
         acc = rep._accepted(run)
-        line, = paths.plot(acc["control_disp"], acc["lambda"], lw=1.0, label=row["reading"])
+        line, = paths.plot(acc["control_disp"], acc["lambda"], lw=1.0, label=row["reading"],
+                           color=colours[i % len(colours)])
         b = measured.get(row["reading"], {}).get("B")
         if b is not None:
             paths.plot(b["control_disp"], b["lambda"], "s" if b["nonsmooth"] else "o",
