@@ -1,0 +1,123 @@
+// The dense LCP of a step (formulations/siconos/siconos_lcp.h), without Siconos: the scaling of
+// an LCP as it is, the elimination M = G K^-1 G^T against a closed form and against the LCP it
+// inverts, the recovered points judged by the verdict, and the refusals with their reasons.
+#include "formulations/siconos/siconos_lcp.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include "fixtures.h"
+#include "siconos_test_models.h"
+#include "solvers/linear_solver.h"
+#include "verdict/verdict.h"
+
+namespace cb {
+namespace {
+
+using siconos_test::SpringsAgainstWall;
+
+const std::string kSolver = DefaultLinearSolverName();
+
+// The step of `model` at fixed load `lambda` from the zero state, with scales L, R.
+StepProblem FixedLoadStep(const ContactModel& model, double lambda, double length, double force) {
+  StepProblem step;
+  step.model = &model;
+  step.base.u = Vec::Zero(model.num_dofs());
+  step.base.r = Vec::Zero(model.num_pairs());
+  step.constraint = StepConstraint::FixedLoad(lambda);
+  step.scales = {length, force};
+  return step;
+}
+
+TEST(SiconosLcpTest, AnLcpAsGivenIsScaledByLAndR) {
+  // lcp2: M = [[2, 1], [1, 2]], q = (-5, -6), z = (4/3, 7/3), w = 0 (tests/fixtures.h).
+  const auto model = fixtures::Lcp2Model();
+  const double length = 0.5, force = 3.0;
+  const StepProblem step = FixedLoadStep(*model, 0.0, length, force);
+  const SteppedLcp lcp(step, kSolver);
+  ASSERT_EQ(lcp.kind(), SteppedLcp::Kind::kAsGiven);
+  Mat m(2, 2);
+  m << 2, 1, 1, 2;
+  Vec q(2);
+  q << -5, -6;
+  EXPECT_LE((lcp.m() - (length / force) * m).norm(), 1e-15);
+  EXPECT_LE((lcp.q() - q / force).norm(), 1e-15);
+  // The known z, scaled, makes w^ = 0, and its point is verified.
+  Vec z(2);
+  z << 4.0 / 3.0, 7.0 / 3.0;
+  EXPECT_LE((lcp.m() * (z / length) + lcp.q()).norm(), 1e-14);
+  const StepPoint point = lcp.PointFromZ(z / length);
+  EXPECT_TRUE(Judge(step, point, 1e-12).verified);
+  EXPECT_LE((point.du - z).norm(), 1e-14);
+  EXPECT_LE((lcp.ZFromPoint(point.du, point.r) - z / length).norm(), 1e-15);
+}
+
+TEST(SiconosLcpTest, EliminationMatchesTheClosedFormOfTwoSprings) {
+  const double k1 = 2.0, k2 = 3.0, f = 1.0, g0 = 0.5, lambda = 2.0;
+  const SpringsAgainstWall model(k1, k2, f, g0);
+  const double length = 0.1, force = 4.0;
+  const StepProblem step = FixedLoadStep(model, lambda, length, force);
+  const SteppedLcp lcp(step, kSolver);
+  ASSERT_EQ(lcp.kind(), SteppedLcp::Kind::kEliminatedDisplacements);
+  ASSERT_EQ(lcp.size(), 1);
+  // G K^-1 G^T = (K^-1)_11 = 1/k1 + 1/k2; q = -(phi(0) + G K^-1 b) = g0 - lambda f (1/k1 + 1/k2).
+  const double flexibility = 1.0 / k1 + 1.0 / k2;
+  EXPECT_NEAR(lcp.m()(0, 0), force / length * flexibility, 1e-12);
+  EXPECT_NEAR(lcp.q()[0], (g0 - lambda * f * flexibility) / length, 1e-12);
+  // In contact (lambda f flexibility = 5/3 > g0): z^ = -r / R makes w^ = g / L = 0.
+  const State answer = model.Answer(lambda);
+  ASSERT_LT(answer.r[0], 0.0);
+  const Vec z = -answer.r / force;
+  EXPECT_NEAR((lcp.m() * z + lcp.q())[0], 0.0, 1e-12);
+  const StepPoint point = lcp.PointFromZ(z);
+  EXPECT_TRUE(Judge(step, point, 1e-12).verified);
+  EXPECT_LE((point.du - answer.u).norm(), 1e-12);
+  EXPECT_NEAR(point.g[0], 0.0, 1e-12);
+}
+
+TEST(SiconosLcpTest, EliminatingAnLcpInvertsIt) {
+  // Forced elimination of lcp2 (K = M, G = -I): M^ = (R / L) M^-1. Its answer has w = 0, so
+  // z^ = -r / R = 0 solves the eliminated LCP, with the gap w^ = q^ = z / L.
+  const auto model = fixtures::Lcp2Model();
+  const double length = 2.0, force = 0.25;
+  const StepProblem step = FixedLoadStep(*model, 0.0, length, force);
+  const SteppedLcp lcp(step, kSolver, SteppedLcp::Kind::kEliminatedDisplacements);
+  Mat m(2, 2);
+  m << 2, 1, 1, 2;
+  EXPECT_LE((lcp.m() - (force / length) * m.inverse()).norm(), 1e-12);
+  const StepPoint point = lcp.PointFromZ(Vec::Zero(2));
+  Vec z(2);
+  z << 4.0 / 3.0, 7.0 / 3.0;
+  EXPECT_LE((lcp.q() - z / length).norm(), 1e-12);
+  EXPECT_LE((point.du - z).norm(), 1e-12);
+  EXPECT_TRUE(Judge(step, point, 1e-12).verified);
+}
+
+TEST(SiconosLcpTest, RefusesWhatIsNoLcpWithTheReason) {
+  std::string why;
+  // An arc-length step.
+  const auto lcp2 = fixtures::Lcp2Model();
+  StepProblem arc = FixedLoadStep(*lcp2, 0.0, 1.0, 1.0);
+  arc.constraint = StepConstraint::ArcLength(0.1);
+  EXPECT_FALSE(SteppedLcp::CanReduce("f", arc, 100, kSolver, &why));
+  EXPECT_NE(why.find("cannot express the step constraint 'arc-length'"), std::string::npos) << why;
+  EXPECT_THROW(SteppedLcp(arc, kSolver), std::invalid_argument);
+  // A nonlinear model (the bar against a wall: a truss, large deformation).
+  const fixtures::Fixture& bar = fixtures::FindFixture("bar_wall");
+  EXPECT_FALSE(SteppedLcp::CanReduce("f", bar.Step(), 100, kSolver, &why));
+  EXPECT_NE(why.find("not linear"), std::string::npos) << why;
+  // P1: linear, but K is singular (no supports).
+  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
+  ASSERT_TRUE(block.problem.model->is_linear());
+  EXPECT_FALSE(SteppedLcp::CanReduce("f", block.Step(), 100, kSolver, &why));
+  EXPECT_NE(why.find("stiffness K is singular"), std::string::npos) << why;
+  // The size limit, on both sides.
+  const StepProblem step = FixedLoadStep(*lcp2, 0.0, 1.0, 1.0);
+  EXPECT_FALSE(SteppedLcp::CanReduce("f", step, 1, kSolver, &why));
+  EXPECT_NE(why.find("2 unknowns, above the dense limit max_size = 1"), std::string::npos) << why;
+  EXPECT_TRUE(SteppedLcp::CanReduce("f", step, 2, kSolver, &why));
+}
+
+}  // namespace
+}  // namespace cb
