@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <cmath>
 
 #include "fixtures.h"
 #include "siconos_test_models.h"
@@ -82,7 +84,8 @@ TEST(SiconosLcpTest, EliminatingAnLcpInvertsIt) {
   const auto model = fixtures::Lcp2Model();
   const double length = 2.0, force = 0.25;
   const StepProblem step = FixedLoadStep(*model, 0.0, length, force);
-  const SteppedLcp lcp(step, kSolver, SteppedLcp::Kind::kEliminatedDisplacements);
+  const SteppedLcp lcp(step, kSolver, /*eliminate=*/true);
+  ASSERT_EQ(lcp.kind(), SteppedLcp::Kind::kEliminatedDisplacements);
   Mat m(2, 2);
   m << 2, 1, 1, 2;
   EXPECT_LE((lcp.m() - (force / length) * m.inverse()).norm(), 1e-12);
@@ -107,16 +110,55 @@ TEST(SiconosLcpTest, RefusesWhatIsNoLcpWithTheReason) {
   const fixtures::Fixture& bar = fixtures::FindFixture("bar_wall");
   EXPECT_FALSE(SteppedLcp::CanReduce("f", bar.Step(), 100, kSolver, &why));
   EXPECT_NE(why.find("not linear"), std::string::npos) << why;
-  // P1: linear, but K is singular (no supports).
-  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
-  ASSERT_TRUE(block.problem.model->is_linear());
-  EXPECT_FALSE(SteppedLcp::CanReduce("f", block.Step(), 100, kSolver, &why));
-  EXPECT_NE(why.find("stiffness K is singular"), std::string::npos) << why;
+  // K singular with a rigid mode the contact does not hold (no springs at all: dof 0 is free).
+  const SpringsAgainstWall loose(0.0, 0.0, 1.0, 0.5);
+  EXPECT_FALSE(SteppedLcp::CanReduce("f", FixedLoadStep(loose, 1.0, 1.0, 1.0), 100, kSolver, &why));
+  EXPECT_NE(why.find("do not hold the body"), std::string::npos) << why;
   // The size limit, on both sides.
   const StepProblem step = FixedLoadStep(*lcp2, 0.0, 1.0, 1.0);
   EXPECT_FALSE(SteppedLcp::CanReduce("f", step, 1, kSolver, &why));
-  EXPECT_NE(why.find("2 unknowns, above the dense limit max_size = 1"), std::string::npos) << why;
+  EXPECT_NE(why.find("2 pairs, above the dense limit max_size = 1"), std::string::npos) << why;
   EXPECT_TRUE(SteppedLcp::CanReduce("f", step, 2, kSolver, &why));
+}
+
+TEST(SiconosLcpTest, ABodyHeldOnlyByItsContactKeepsItsRigidMode) {
+  // k1 = 0: the springs float (K N = 0 for N = (1, 1)) and only the wall holds them. In closed
+  // form u0 = u1 = g0 and r = -lambda f.
+  const double k2 = 3.0, f = 1.0, g0 = 0.5, lambda = 2.0;
+  const SpringsAgainstWall model(0.0, k2, f, g0);
+  const double length = 0.1, force = 4.0;
+  const StepProblem step = FixedLoadStep(model, lambda, length, force);
+  std::string why;
+  ASSERT_TRUE(SteppedLcp::CanReduce("f", step, 1, kSolver, &why)) << why;
+  const SteppedLcp lcp(step, kSolver);
+  ASSERT_EQ(lcp.kind(), SteppedLcp::Kind::kEliminatedWithRigidModes);
+  ASSERT_EQ(lcp.num_rigid_modes(), 1);
+  ASSERT_EQ(lcp.size(), 3);  // z^, a+^, a-^
+  // The single gap is all rigid: M = 0 on it, V1 = +-1, and V1^T z^ = lambda f / R.
+  const double v = lcp.m()(0, 1);
+  EXPECT_NEAR(std::abs(v), 1.0, 1e-12);
+  EXPECT_NEAR(lcp.m()(0, 0), 0.0, 1e-9);
+  EXPECT_NEAR(v * lcp.q()[1], lambda * f / force, 1e-9);  // row a+: -V1^T z^ + e / R
+  // The answer: z^ = lambda f / R, gap 0 (a = 0), w^ = 0 in every row.
+  Vec z = Vec::Zero(3);
+  z[0] = lambda * f / force;
+  EXPECT_LE((lcp.m() * z + lcp.q()).norm(), 1e-9);
+  const StepPoint point = lcp.PointFromZ(z);
+  EXPECT_TRUE(Judge(step, point, 1e-9).verified);
+  EXPECT_NEAR(point.du[0], g0, 1e-9);
+  EXPECT_NEAR(point.du[1], g0, 1e-9);
+  EXPECT_NEAR(point.r[0], -lambda * f, 1e-9);
+}
+
+TEST(SiconosLcpTest, P1KeepsItsThreeRigidModes) {
+  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
+  const SteppedLcp lcp(block.Step(), kSolver);
+  EXPECT_EQ(lcp.kind(), SteppedLcp::Kind::kEliminatedWithRigidModes);
+  EXPECT_EQ(lcp.num_rigid_modes(), 3);  // two translations and a rotation in the plane
+  EXPECT_EQ(lcp.size(), block.problem.model->num_pairs() + 6);
+  // Positive semidefinite: the rigid coupling is skew, the elastic block symmetric PSD.
+  const Mat sym = 0.5 * (lcp.m() + lcp.m().transpose());
+  EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat>(sym).eigenvalues().minCoeff(), -1e-9);
 }
 
 }  // namespace

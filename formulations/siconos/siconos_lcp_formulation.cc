@@ -43,9 +43,7 @@ class SiconosLcpFormulation final : public Formulation {
                StepResult* result) override {
     Stopwatch clock;
     const SteppedLcp lcp(step, options_.linear_solver);
-    result->details["lcp"] = lcp.kind() == SteppedLcp::Kind::kAsGiven
-                                 ? "as given"
-                                 : "displacements eliminated (M = G K^-1 G^T)";
+    result->details["lcp"] = SteppedLcp::KindName(lcp.kind());
     result->details["lcp_size"] = std::to_string(lcp.size());
     const Vec z0 =
         start.kind == StartKind::kWarm ? lcp.ZFromPoint(start.du, start.r) : Vec::Zero(lcp.size());
