@@ -143,9 +143,6 @@ constexpr KnownLimitation kKnownLimitations[] = {
      "LD_LBFGS on the merit does not reach the 1e-8 verdict near the kink (step 40)"},
     {"nlopt-energy", "lcp2", "stops at eq_res ~4e-8 (tolerance reached), above the 1e-8 verdict"},
     {"nlopt-energy", "block_n10", "reaches maxeval with eq_res ~1e-3 on P1 at n = 10"},
-    {"siconos-newton-fb", "block_n10",
-     "P1's LCP keeps its rigid modes as a+ - a- (not unique): Siconos's FB Newton finds no "
-     "descent direction at comp ~6e-6"},
 };
 
 const KnownLimitation* FindLimitation(const std::string& formulation, const std::string& fixture) {

@@ -60,7 +60,7 @@ std::string SiconosLcpOptions::Settings(SiconosLcpSolver solver) const {
   std::ostringstream s;
   s << "solver=" << SiconosLcpSolverName(solver) << " tol=" << tol;
   if (solver != SiconosLcpSolver::kLemke) s << " max_iter=" << max_iter;
-  s << " max_size=" << max_size << " linear_solver=" << linear_solver;
+  s << " max_size=" << max_size;
   if (solver == SiconosLcpSolver::kLemke) s << " iterations=pivots";
   return s.str();
 }

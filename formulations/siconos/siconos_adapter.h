@@ -43,7 +43,6 @@ struct SiconosLcpOptions {
   // The largest LCP (number of contact pairs) accepted: M is dense, n^2 doubles, and Lemke's
   // pivots cost O(n^2) each, so 2000 means 32 MB and seconds per solve.
   int max_size = 2000;
-  std::string linear_solver;  // factorises K for the reduction (the run's --linear-solver)
 
   void Read(OptionReader* reader);
   // Throws std::invalid_argument naming the bad option of formulation `name`.

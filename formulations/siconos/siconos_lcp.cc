@@ -7,9 +7,33 @@
 #include <stdexcept>
 
 #include "model/complementarity_model.h"
-#include "solvers/linear_solver.h"
+
+// A sparse Cholesky of K: CHOLMOD's supernodal one where the build has SuiteSparse (dense
+// kernels on the many right-hand sides of the reduction), else Eigen's.
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+#include <Eigen/CholmodSupport>
+#else
+#include <Eigen/SparseCholesky>
+#endif
 
 namespace cb {
+
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+using SpdFactorization = Eigen::CholmodSupernodalLLT<SpMat>;
+// Nothing in the library prints: CHOLMOD reports a matrix that is not positive definite (a
+// singular K, expected here) on stderr unless told not to.
+void Quiet(SpdFactorization* factor) {
+  factor->cholmod().print = 0;
+  factor->cholmod().error_handler = nullptr;
+}
+#else
+using SpdFactorization = Eigen::SimplicialLDLT<SpMat>;
+void Quiet(SpdFactorization*) {}
+#endif
+
+struct SteppedLcp::Factor {
+  std::unique_ptr<SpdFactorization> factorization;
+};
 
 namespace {
 
@@ -48,22 +72,28 @@ bool CheckStep(const std::string& formulation, const StepProblem& step, int max_
   return true;
 }
 
-// `k` factorised, or null when it is singular. A sparse Cholesky or LU of a matrix singular only
-// by its rigid-body modes may not meet a zero pivot in floating point, so the factors are also
-// tried on a right-hand side that is generically outside the range of a singular matrix: a
-// backward-stable solve with a nonsingular one leaves a residual of the order of the rounding,
-// with a singular one of the order of the right-hand side.
-std::unique_ptr<LinearSolver> Factor(const SpMat& k, const std::string& linear_solver) {
-  auto solver = MakeLinearSolver(linear_solver);
-  if (!solver->Factorize(k)) return nullptr;
-  Vec probe(k.rows()), x;
+// Cholesky's requirement, and the rigid modes' (the eigen-decomposition of a symmetric A).
+bool IsSymmetric(const SpMat& k) { return (k - SpMat(k.transpose())).norm() <= 1e-12 * k.norm(); }
+
+// `k` (symmetric) factorised, or null when it is singular. A Cholesky factorisation of a matrix
+// singular only by its rigid-body modes may not meet a zero pivot in floating point, so the
+// factors are also tried on a right-hand side that is generically outside the range of a
+// singular matrix: a solve with a nonsingular one leaves a residual of the order of the
+// rounding, with a singular one of the order of the right-hand side.
+std::unique_ptr<SpdFactorization> Factorize(const SpMat& k) {
+  auto factor = std::make_unique<SpdFactorization>();
+  Quiet(factor.get());
+  factor->compute(k);
+  if (factor->info() != Eigen::Success) return nullptr;
+  Vec probe(k.rows());
   for (Eigen::Index i = 0; i < probe.size(); ++i) probe[i] = std::sin(1.0 + static_cast<double>(i));
+  const Vec x = factor->solve(probe);
   constexpr double kSingularResidual = 1e-6;  // relative; rounding leaves ~1e-16 cond(K)
-  if (!solver->Solve(probe, &x) || !x.allFinite() ||
+  if (factor->info() != Eigen::Success || !x.allFinite() ||
       (k * x - probe).norm() > kSingularResidual * probe.norm()) {
     return nullptr;
   }
-  return solver;
+  return factor;
 }
 
 // c of K_c = K + c G^T G (the top of the header): 1e-3 times the smallest diagonal entry of K
@@ -78,19 +108,18 @@ double RigidPenalty(const SpMat& k, const SpMat& g) {
   return std::isfinite(smallest) && smallest > 0.0 ? 1e-3 * smallest : 1.0;
 }
 
-// K factorised, or K_c with *penalty = c when K is singular; null when neither factorises (the
-// contacts do not hold the body). Fills *k and *g.
-std::unique_ptr<LinearSolver> FactorStiffness(const StepProblem& step,
-                                              const std::string& linear_solver, SpMat* k, SpMat* g,
-                                              double* penalty) {
-  step.model->Stiffness(step.base.u, k);
+// K factorised, or K_c with *penalty = c when K is singular; null when K is not symmetric or
+// neither factorises (the contacts do not hold the body). Fills *g.
+std::unique_ptr<SpdFactorization> FactorStiffness(const StepProblem& step, SpMat* g,
+                                                  double* penalty) {
+  SpMat k;
+  step.model->Stiffness(step.base.u, &k);
   step.model->GapJacobian(step.base.u, g);
   *penalty = 0.0;
-  if (auto solver = Factor(*k, linear_solver)) return solver;
-  if (!step.model->has_energy()) return nullptr;  // the rigid modes need a symmetric K
-  *penalty = RigidPenalty(*k, *g);
-  const SpMat kc = *k + *penalty * SpMat(g->transpose() * *g);
-  return Factor(kc, linear_solver);
+  if (!IsSymmetric(k)) return nullptr;
+  if (auto factor = Factorize(k)) return factor;
+  *penalty = RigidPenalty(k, *g);
+  return Factorize(k + *penalty * SpMat(g->transpose() * *g));
 }
 
 }  // namespace
@@ -108,29 +137,30 @@ const char* SteppedLcp::KindName(Kind kind) {
 }
 
 bool SteppedLcp::CanReduce(const std::string& formulation, const StepProblem& step, int max_size,
-                           const std::string& linear_solver, std::string* why) {
+                           std::string* why) {
   if (!CheckStep(formulation, step, max_size, why)) return false;
   if (IsLcpModel(step)) return true;
-  SpMat k, g;
+  SpMat g;
   double penalty = 0.0;
-  if (FactorStiffness(step, linear_solver, &k, &g, &penalty) == nullptr) {
+  if (FactorStiffness(step, &g, &penalty) == nullptr) {
     *why = formulation +
-           ": the stiffness K is singular and the contact pairs do not hold the body (nor is K "
-           "symmetric), so the displacements cannot be eliminated into an LCP";
+           ": the stiffness K is not symmetric, or singular with rigid-body modes that the "
+           "contact pairs do not hold, so the displacements cannot be eliminated into an LCP";
     return false;
   }
   return true;
 }
 
-SteppedLcp::SteppedLcp(const StepProblem& step, const std::string& linear_solver, bool eliminate)
-    : step_(step) {
+SteppedLcp::~SteppedLcp() = default;
+
+SteppedLcp::SteppedLcp(const StepProblem& step, bool eliminate) : step_(step) {
   std::string why;
   if (!CheckStep("SteppedLcp", step, step.num_pairs(), &why)) throw std::invalid_argument(why);
   if (IsLcpModel(step) && !eliminate) {
     kind_ = Kind::kAsGiven;
     BuildAsGiven();
   } else {
-    BuildEliminated(linear_solver);
+    BuildEliminated();
   }
 }
 
@@ -148,36 +178,36 @@ void SteppedLcp::BuildAsGiven() {
 }
 
 // The two eliminated kinds (the top of the header); c = 0 for a nonsingular K.
-void SteppedLcp::BuildEliminated(const std::string& linear_solver) {
+void SteppedLcp::BuildEliminated() {
   const double length = step_.scales.length;
   const double force = step_.scales.force;
   const StepProblem& s = step_;
   const int nc = s.num_pairs();
-  SpMat k, g;
-  auto solver = FactorStiffness(s, linear_solver, &k, &g, &penalty_);
-  if (solver == nullptr) {
+  factor_ = std::make_unique<Factor>();
+  factor_->factorization = FactorStiffness(s, &g_, &penalty_);
+  const SpdFactorization* k = factor_->factorization.get();
+  if (k == nullptr) {
     throw std::invalid_argument(
-        "SteppedLcp: K is singular and the contact pairs do not hold the body");
+        "SteppedLcp: K is singular and the contact pairs do not hold the body, or K is not "
+        "symmetric");
   }
   Vec internal, phi;
   s.model->InternalForce(s.base.u, &internal);
   s.model->Gaps(s.base.u, &phi);
-  const Vec rhs = s.constraint.target * s.model->load_pattern() - internal -
-                  penalty_ * Vec(g.transpose() * phi);
-  if (!solver->Solve(rhs, &k_inv_b_))
-    throw std::invalid_argument("SteppedLcp: " + solver->message());
-  const Mat gt = Mat(SpMat(g.transpose()));
-  k_inv_gt_.resize(s.num_dofs(), nc);
-  Vec column;
-  for (int p = 0; p < nc; ++p) {
-    if (!solver->Solve(gt.col(p), &column)) {
-      throw std::invalid_argument("SteppedLcp: " + solver->message());
-    }
-    k_inv_gt_.col(p) = column;
+  rhs_ = s.constraint.target * s.model->load_pattern() - internal -
+         penalty_ * Vec(g_.transpose() * phi);
+  const Vec k_inv_b = k->solve(rhs_);
+  // A = G K_c^-1 G^T, a block of right-hand sides at a time (d x block at most in memory).
+  const SpMat gt = g_.transpose();
+  constexpr int kBlock = 64;
+  Mat a(nc, nc);
+  for (int first = 0; first < nc; first += kBlock) {
+    const int cols = std::min(kBlock, nc - first);
+    const Mat x = k->solve(Mat(gt.middleCols(first, cols)));
+    a.middleCols(first, cols) = g_ * x;
   }
-  Mat a = g * k_inv_gt_;
   a = 0.5 * (a + a.transpose()).eval();  // symmetric to rounding, as G K_c^-1 G^T is
-  const Vec h = -phi - g * k_inv_b_;
+  const Vec h = -phi - g_ * k_inv_b;
   if (penalty_ == 0.0) {
     kind_ = Kind::kEliminatedDisplacements;
     m_ = (force / length) * a;
@@ -234,16 +264,17 @@ StepPoint SteppedLcp::PointFromZ(const Vec& z) const {
     s.model->InternalForce(u, &internal);
     point.r = s.constraint.target * s.model->load_pattern() - internal;
   } else {
+    // K_c du = b - c G^T phi(u^k) + G^T (r - c g) with g = L (M^ z^ + q^ + V1 a^); c = 0:
+    // K du = b + G^T r.
     point.r = -s.scales.force * z.head(nc);
-    point.du = k_inv_b_ + k_inv_gt_ * point.r;
+    Vec reaction = point.r;
     if (kind_ == Kind::kEliminatedWithRigidModes) {
-      // K_c du = b - c G^T phi(u^k) + G^T (r - c g), g = L (M^ z^ + q^ + V1 a^).
       const int m = num_rigid_modes();
       const Vec a = z.segment(nc, m) - z.segment(nc + m, m);
-      const Vec g =
-          s.scales.length * (m_.topLeftCorner(nc, nc) * z.head(nc) + q_.head(nc) + rigid_ * a);
-      point.du -= penalty_ * (k_inv_gt_ * g);
+      reaction -= penalty_ * s.scales.length *
+                  (m_.topLeftCorner(nc, nc) * z.head(nc) + q_.head(nc) + rigid_ * a);
     }
+    point.du = factor_->factorization->solve(Vec(rhs_ + g_.transpose() * reaction));
   }
   Vec phi;
   s.model->Gaps(s.base.u + point.du, &phi);

@@ -17,6 +17,9 @@
 //    z^ = -r / R and w^ = g / L:
 //        M^ = (R / L) G K^-1 G^T,   q^ = -(phi(u^k) + G K^-1 b) / L.
 //    M^ is symmetric positive semidefinite, the case in which Lemke's method ends at a solution.
+//    K is factorised once (sparse Cholesky: CHOLMOD's supernodal one where SuiteSparse was
+//    built, so the nc right-hand sides G^T are solved in blocks with dense kernels); nothing of
+//    size d x nc is kept.
 //
 //  - kEliminatedWithRigidModes: the same with a singular K, a body held only by its contacts
 //    (P1 `block`: no supports). Its rigid-body modes N (K N = 0) leave the gap undetermined
@@ -42,6 +45,7 @@
 //    lambda_C stay far below 1/2).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/types.h"
@@ -54,15 +58,16 @@ class SteppedLcp {
   enum class Kind { kAsGiven, kEliminatedDisplacements, kEliminatedWithRigidModes };
 
   // Whether `step` reduces to a dense LCP of at most `max_size` pairs (the kinds above; K, or
-  // K_c, is factorised with `linear_solver` to find out). Otherwise false with the reason,
-  // naming `formulation`, in *why.
+  // K_c, is factorised to find out). Otherwise false with the reason, naming `formulation`, in
+  // *why.
   static bool CanReduce(const std::string& formulation, const StepProblem& step, int max_size,
-                        const std::string& linear_solver, std::string* why);
+                        std::string* why);
 
   // The LCP of `step`. Throws std::invalid_argument when the step does not reduce (CanReduce's
   // reasons, without its size limit), naming the reason. `eliminate` forces the elimination for
   // a linear ComplementarityModel (whose K = M is then factorised; the tests compare both).
-  SteppedLcp(const StepProblem& step, const std::string& linear_solver, bool eliminate = false);
+  explicit SteppedLcp(const StepProblem& step, bool eliminate = false);
+  ~SteppedLcp();
 
   Kind kind() const { return kind_; }
   static const char* KindName(Kind kind);
@@ -80,16 +85,19 @@ class SteppedLcp {
 
  private:
   void BuildAsGiven();
-  void BuildEliminated(const std::string& linear_solver);
+  void BuildEliminated();
 
   const StepProblem& step_;
   Kind kind_ = Kind::kAsGiven;
   Mat m_;
   Vec q_;
-  // Elimination only: c, K_c^-1 (b - c G^T phi(u^k)) and K_c^-1 G^T (d x nc), V1 (nc x m).
+  // Elimination only, to recover du from z^ (one more solve): the factorisation of K (or K_c),
+  // G, c, b - c G^T phi(u^k), and V1 (nc x m).
+  struct Factor;
+  std::unique_ptr<Factor> factor_;
+  SpMat g_;
   double penalty_ = 0.0;
-  Vec k_inv_b_;
-  Mat k_inv_gt_;
+  Vec rhs_;
   Mat rigid_;
 };
 

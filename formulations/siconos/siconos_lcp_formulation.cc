@@ -36,13 +36,13 @@ class SiconosLcpFormulation final : public Formulation {
 
  private:
   bool DoAccepts(const StepProblem& step, std::string* why) const override {
-    return SteppedLcp::CanReduce(name_, step, options_.max_size, options_.linear_solver, why);
+    return SteppedLcp::CanReduce(name_, step, options_.max_size, why);
   }
 
   void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
                StepResult* result) override {
     Stopwatch clock;
-    const SteppedLcp lcp(step, options_.linear_solver);
+    const SteppedLcp lcp(step);
     result->details["lcp"] = SteppedLcp::KindName(lcp.kind());
     result->details["lcp_size"] = std::to_string(lcp.size());
     const Vec z0 =
@@ -86,7 +86,6 @@ std::unique_ptr<Formulation> MakeSiconosLcp(const std::string& name, SiconosLcpS
   OptionReader reader(name, config.options);
   SiconosLcpOptions options;
   options.Read(&reader);
-  options.linear_solver = config.solver_options.linear_solver;
   reader.Finish();
   return std::make_unique<SiconosLcpFormulation>(name, solver, options);
 }
