@@ -53,8 +53,7 @@ bool CheckStep(const std::string& formulation, const StepProblem& step, int max_
   if (!step.model->is_linear()) {
     *why = formulation +
            ": the model is not linear (large deformation or a curved obstacle), so the step is "
-           "no LCP; Siconos 4.4's MCP solver, which could take it, is not used (its "
-           "Fischer-Burmeister Jacobian with equality rows is wrong before 4.5; "
+           "no LCP (Siconos's MCP solvers, which could take it, are not used: "
            "docs/backend-siconos.md)";
     return false;
   }
