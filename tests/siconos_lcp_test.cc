@@ -16,18 +16,8 @@
 namespace cb {
 namespace {
 
+using siconos_test::FixedLoadStep;
 using siconos_test::SpringsAgainstWall;
-
-// The step of `model` at fixed load `lambda` from the zero state, with scales L, R.
-StepProblem FixedLoadStep(const ContactModel& model, double lambda, double length, double force) {
-  StepProblem step;
-  step.model = &model;
-  step.base.u = Vec::Zero(model.num_dofs());
-  step.base.r = Vec::Zero(model.num_pairs());
-  step.constraint = StepConstraint::FixedLoad(lambda);
-  step.scales = {length, force};
-  return step;
-}
 
 TEST(SiconosLcpTest, AnLcpAsGivenIsScaledByLAndR) {
   // lcp2: M = [[2, 1], [1, 2]], q = (-5, -6), z = (4/3, 7/3), w = 0 (tests/fixtures.h).

@@ -19,6 +19,7 @@
 namespace cb {
 namespace {
 
+using siconos_test::FixedLoadStep;
 using siconos_test::SpringsAgainstWall;
 
 const char* const kNames[] = {"siconos-lemke", "siconos-newton-fb", "siconos-newton-min"};
@@ -32,16 +33,6 @@ std::unique_ptr<Formulation> Make(const std::string& name,
 
 #define SKIP_WITHOUT_SICONOS() \
   if (!SiconosAvailable()) GTEST_SKIP() << "built without Siconos numerics"
-
-StepProblem FixedLoadStep(const ContactModel& model, double lambda, double length, double force) {
-  StepProblem step;
-  step.model = &model;
-  step.base.u = Vec::Zero(model.num_dofs());
-  step.base.r = Vec::Zero(model.num_pairs());
-  step.constraint = StepConstraint::FixedLoad(lambda);
-  step.scales = {length, force};
-  return step;
-}
 
 StartPoint Start(const StepProblem& step, StartKind kind) {
   StartPoint start;
@@ -154,6 +145,22 @@ TEST(SiconosTest, ControlsActBeforeTheCall) {
   EXPECT_EQ(r.status, Status::kStoppedByCaller);
   EXPECT_EQ(r.counts.iterations, 0);
   EXPECT_EQ(r.point.du.size(), step.num_dofs());
+}
+
+TEST(SiconosTest, ANanFromTheModelIsAFailedStepWithoutCallingSiconos) {
+  SKIP_WITHOUT_SICONOS();
+  SpringsAgainstWall model(2.0, 3.0, 1.0, 0.5);
+  model.set_nan_force(true);
+  const StepProblem step = FixedLoadStep(model, 2.0, 0.1, 4.0);
+  for (const char* name : kNames) {
+    auto f = Make(name);
+    ASSERT_TRUE(f->Accepts(step)) << name;  // K is fine; only the forces are broken
+    const StepResult r = f->Solve(step, Start(step, StartKind::kCold));
+    EXPECT_EQ(r.status, Status::kFailed) << name;
+    EXPECT_NE(r.message.find("non-finite"), std::string::npos) << r.message;
+    EXPECT_EQ(r.counts.iterations, 0) << name;
+    EXPECT_FALSE(Judge(step, r.point, 1e-8).verified) << name;
+  }
 }
 
 TEST(SiconosTest, RefusesUnknownAndBadOptions) {

@@ -1,11 +1,15 @@
-// A small linear model with a nonsingular stiffness for the Siconos tests: two springs in series
+// What the Siconos tests share: a fixed-load step from the zero state, and a small linear model
+// with a nonsingular stiffness: two springs in series
 // (k1 from the ground to dof 0, k2 from dof 0 to dof 1), the load lambda f on dof 1, and a wall
 // at distance g0 ahead of dof 1 (phi(u) = u1 - g0, positive inside the wall). In closed form:
 // free while lambda f (1/k1 + 1/k2) <= g0; in contact beyond, with
 //   u1 = g0,  u0 = k2 g0 / (k1 + k2),  r = k1 k2 g0 / (k1 + k2) - lambda f  (< 0).
 #pragma once
 
+#include <limits>
+
 #include "model/contact_model.h"
+#include "step/step_problem.h"
 
 namespace cb::siconos_test {
 
@@ -24,8 +28,10 @@ class SpringsAgainstWall final : public ContactModel {
   void InternalForce(const Vec& u, Vec* force) const override {
     force->resize(2);
     (*force)[0] = k1_ * u[0] - k2_ * (u[1] - u[0]);
-    (*force)[1] = k2_ * (u[1] - u[0]);
+    (*force)[1] = nan_force_ ? std::numeric_limits<double>::quiet_NaN() : k2_ * (u[1] - u[0]);
   }
+  // A broken model: the internal force of dof 1 is NaN.
+  void set_nan_force(bool nan) { nan_force_ = nan; }
   void Stiffness(const Vec&, SpMat* stiffness) const override {
     Mat k(2, 2);
     k << k1_ + k2_, -k2_, -k2_, k2_;
@@ -63,7 +69,20 @@ class SpringsAgainstWall final : public ContactModel {
 
  private:
   double k1_, k2_, g0_;
+  bool nan_force_ = false;
   Vec load_;
 };
+
+// The step of `model` at fixed load `lambda` from the zero state, with scales L, R.
+inline StepProblem FixedLoadStep(const ContactModel& model, double lambda, double length,
+                                 double force) {
+  StepProblem step;
+  step.model = &model;
+  step.base.u = Vec::Zero(model.num_dofs());
+  step.base.r = Vec::Zero(model.num_pairs());
+  step.constraint = StepConstraint::FixedLoad(lambda);
+  step.scales = {length, force};
+  return step;
+}
 
 }  // namespace cb::siconos_test

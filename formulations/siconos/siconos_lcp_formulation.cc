@@ -47,6 +47,14 @@ class SiconosLcpFormulation final : public Formulation {
     result->details["lcp_size"] = std::to_string(lcp.size());
     const Vec z0 =
         start.kind == StartKind::kWarm ? lcp.ZFromPoint(start.du, start.r) : Vec::Zero(lcp.size());
+    if (!lcp.m().allFinite() || !lcp.q().allFinite()) {
+      // Siconos's pivoting and LAPACK calls are not meant for NaN: a failed step, not a call.
+      result->status = Status::kFailed;
+      result->message =
+          "the LCP has non-finite entries (the model's forces or gaps are not finite)";
+      result->point = lcp.PointFromZ(Vec::Zero(lcp.size()));
+      return;
+    }
     if (StoppedBeforeTheCall(controls, clock, result)) {
       result->point = lcp.PointFromZ(z0);
       return;
