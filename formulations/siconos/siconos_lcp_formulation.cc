@@ -27,7 +27,7 @@ namespace {
 class SiconosLcpFormulation final : public Formulation {
  public:
   SiconosLcpFormulation(std::string name, SiconosLcpSolver solver, SiconosLcpOptions options)
-      : name_(std::move(name)), solver_(solver), options_(std::move(options)) {
+      : name_(std::move(name)), solver_(solver), options_(options) {
     options_.Check(name_);
   }
   std::string name() const override { return name_; }
