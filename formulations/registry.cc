@@ -6,6 +6,7 @@
 #include "formulations/ipopt/ipopt.h"
 #include "formulations/nlopt/nlopt.h"
 #include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/siconos/siconos.h"
 
 namespace cb {
 
@@ -29,6 +30,12 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        NloptAvailable(), MakeNloptEnergy},
       {"nlopt-mpcc", "the step NLP in penalty form, NLopt LD_SLSQP", NloptAvailable(),
        MakeNloptMpcc},
+      {"siconos-lemke", "fixed-load step as a dense LCP (displacements eliminated), Siconos Lemke",
+       SiconosAvailable(), MakeSiconosLemke},
+      {"siconos-newton-fb", "the same LCP, Siconos semismooth Newton on FB with line search",
+       SiconosAvailable(), MakeSiconosNewtonFb},
+      {"siconos-newton-min", "the same LCP, Siconos Newton on min(z, w) with FB line search",
+       SiconosAvailable(), MakeSiconosNewtonMin},
   };
   return registry;
 }

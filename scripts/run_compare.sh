@@ -19,6 +19,15 @@
 #                            dense above 2000 unknowns, recorded as skipped). Cold only: a
 #                            "warm" start of the one solve from the unloaded state would be
 #                            u = 0, r = 0, which is no previous answer.
+#   robustness               robustness against the step size: P2 and P3 replayed at each arc
+#                            length theta of ROBUST_THETAS (default 0.1 0.2 0.5 1.0), each theta
+#                            a reference path of its own over the same stretch of arc length
+#                            (ROBUST_ARC_FLAT = 100 for P2, through its limit point B at arc
+#                            length ~91; ROBUST_ARC_CURVED = 50 for P3, through its first
+#                            nonsmooth limit point at ~46), so round(arc / theta) steps: 1000,
+#                            500, 200, 100 on P2 and 500, 250, 100, 50 on P3. Warm start, the
+#                            formulations of the full paths. Records go to
+#                            RESULTS_DIR/robustness/<problem>/theta-<theta>/.
 #
 # Every solve has a time limit of TIME_LIMIT seconds (default 5, as the main job's comparison);
 # runs.csv records it (column time_limit_s), and the report charges failures at it.
@@ -29,13 +38,17 @@
 # core for the first 22 minutes): 28.5 minutes
 # (arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s, arch-curved-prefix 818 s, of
 # which ~550 s nlopt-mpcc and ~250 s nlopt-merit, block 6 s).
-# Usage: scripts/run_compare.sh [SET ...]   (default: all five sets, in the order above)
+# Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
-# PREFIX_STEPS (50), FULL_STEPS (the problems' own), SKIP_SETUP=1 to use an existing build without running setup.sh.
+# PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),
+# ROBUST_ARC_CURVED (50), SKIP_SETUP=1 to use an existing build without running setup.sh.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
 out="${RESULTS_DIR:-$here/results}/compare"
+robust_out="${RESULTS_DIR:-$here/results}/robustness"
+read -r -a robust_thetas <<< "${ROBUST_THETAS:-0.1 0.2 0.5 1.0}"
+declare -A robust_arc=([arch-flat]="${ROBUST_ARC_FLAT:-100}" [arch-curved]="${ROBUST_ARC_CURVED:-50}")
 time_limit="${TIME_LIMIT:-5}"
 prefix_steps="${PREFIX_STEPS:-50}"
 # FULL_STEPS: a documented prefix of the full paths instead (empty: each problem's own steps).
@@ -52,8 +65,8 @@ all="$(join "${available[@]}")"
 full_path_set="$(join $(printf '%s\n' "${available[@]}" | grep -vx -e nlopt-mpcc -e nlopt-merit))"
 
 status=0
-compare() {  # compare SET ARGS...
-  local dir="$out/$1"; shift
+compare() {  # compare DIR ARGS...
+  local dir="$1"; shift
   rm -rf "$dir"  # one comparison per directory: the CSVs are appended to, never mixed
   echo "== contactbench compare $* --out $dir" >&2
   local start=$SECONDS
@@ -64,17 +77,25 @@ compare() {  # compare SET ARGS...
 }
 
 sets=("$@")
-((${#sets[@]})) || sets=(arch-flat arch-curved arch-flat-prefix arch-curved-prefix block)
+((${#sets[@]})) || sets=(arch-flat arch-curved arch-flat-prefix arch-curved-prefix block robustness)
 for set in "${sets[@]}"; do
   case "$set" in
     arch-flat|arch-curved)
-      compare "$set" --problem "$set" --formulations "$full_path_set" --starts warm,cold \
+      compare "$out/$set" --problem "$set" --formulations "$full_path_set" --starts warm,cold \
           "${full_steps[@]}" ;;
     arch-flat-prefix|arch-curved-prefix)
-      compare "$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \
+      compare "$out/$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \
           --steps "$prefix_steps" ;;
     block)
-      compare block --problem block --formulations "$all" --starts cold ;;
+      compare "$out/block" --problem block --formulations "$all" --starts cold ;;
+    robustness)
+      for problem in arch-flat arch-curved; do
+        for theta in "${robust_thetas[@]}"; do
+          steps=$(awk -v a="${robust_arc[$problem]}" -v t="$theta" 'BEGIN {printf "%d", a / t + 0.5}')
+          compare "$robust_out/$problem/theta-$theta" --problem "$problem" \
+              --formulations "$full_path_set" --starts warm --arc-length "$theta" --steps "$steps"
+        done
+      done ;;
     *) echo "run_compare: unknown set '$set'" >&2; exit 2 ;;
   esac
 done

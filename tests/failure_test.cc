@@ -109,6 +109,8 @@ TEST(FailureTest, NanFromTheModelIsAFailedStepWithItsReasonInEveryFormulation) {
   for (const std::string& name : AvailableFormulations()) {
     SCOPED_TRACE(name);
     auto f = MakeFormulation(name, {});
+    const StepProblem step{&model, ZeroState(model), StepConstraint::FixedLoad(1.0), p.scales};
+    if (!f->Accepts(step)) continue;  // an LCP backend on the nonlinear bar, say
     StepResult r;
     ASSERT_NO_THROW(r = FixedLoadStep(*f, model, p.scales));
     EXPECT_EQ(r.status, Status::kFailed) << r.message;

@@ -3,6 +3,7 @@
 `write(results_dir)` reads only
   results_dir/compare/<set>/runs.csv, steps.csv   (`contactbench compare`, scripts/run_compare.sh)
   results_dir/bench/*.json                        (Google Benchmark JSON, scripts/run_bench.sh)
+  results_dir/robustness/<problem>/<theta>/*.csv  (the step-size axis, plotlib/robustness.py)
 and writes results_dir/COMPARISON.md and PNG figures into results_dir/figures/comparison/.
 
 Aggregation (docs/comparison.md "Aggregation"), per comparison set (one directory
@@ -798,6 +799,8 @@ def write(results_dir):
         out += ["No comparison records under `compare/` (run `scripts/run_compare.sh`).", ""]
     for name, runs, steps in sets:
         out += set_section(name, runs, steps, figures_dir, results_dir)
+    from plotlib import robustness  # here: it uses this module's helpers
+    out += robustness.section(results_dir, figures_dir)
     out += targets_section(results_dir)
     out += scaling_section(results_dir, figures_dir)
     out += step_benchmark_section(results_dir)
