@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "core/blas_info.h"
 #include "step/formulation.h"
 #include "verdict/verdict.h"
 
@@ -34,6 +35,7 @@ inline void AddMachineContext() {
   benchmark::AddCustomContext("cpu_model", CpuModel());
   benchmark::AddCustomContext("hardware_threads",
                               std::to_string(std::thread::hardware_concurrency()));
+  benchmark::AddCustomContext("blas", BlasDescription(LoadedBlas()));
 }
 
 // Why an answer is not accepted, for SkipWithError.

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/blas_info.h"
 #include "core/timer.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "path/path.h"
@@ -334,6 +335,7 @@ void RegisterAll() {
 
 int main(int argc, char** argv) {
   cb::RegisterAll();
+  benchmark::AddCustomContext("blas", cb::BlasDescription(cb::LoadedBlas()));
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -40,9 +40,9 @@ def diff_csv(old, new, label, out):
                     return
 
 
-# run.json's fields that differ between two runs of the same records: the build, the command
-# line (it names the output directory), when it started and how long it took.
-RUN_JSON_UNCOMPARED = {"version", "commit", "command_line", "started_at", "wall_time_s"}
+# run.json's fields that differ between two runs of the same records: the build, the BLAS it
+# ran on, the command line (it names the output directory), when it started and how long it took.
+RUN_JSON_UNCOMPARED = {"version", "commit", "blas", "command_line", "started_at", "wall_time_s"}
 
 
 def diff_run_json(old, new, label, out):

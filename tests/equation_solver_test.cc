@@ -155,6 +155,7 @@ TEST(SolverOptionsTest, EachInvalidFieldIsRejectedByName) {
       {"armijo", [](SolverOptions* o) { o->armijo = 0.0; }},
       {"armijo", [](SolverOptions* o) { o->armijo = 0.5; }},
       {"max_backtracks", [](SolverOptions* o) { o->max_backtracks = 0; }},
+      {"nonmonotone_window", [](SolverOptions* o) { o->nonmonotone_window = 0; }},
       {"backtrack_min", [](SolverOptions* o) { o->backtrack_min = 0.0; }},
       {"backtrack_max", [](SolverOptions* o) { o->backtrack_max = 1.0; }},
       {"backtrack_min", [](SolverOptions* o) { o->backtrack_min = 0.6; }},

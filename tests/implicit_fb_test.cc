@@ -252,6 +252,31 @@ INSTANTIATE_TEST_SUITE_P(EtaAndSolver, BlockColdSolveTest,
                                   std::get<1>(info.param);
                          });
 
+// P1 from the cold start over every mesh n = 10..50: the same physics, so Newton's iteration
+// count must not depend on the mesh's luck. With a monotone line search it ranged from 13 to 55
+// (n = 10, eta 1), the full step clipped to the minimum factor for dozens of iterations.
+TEST(BlockColdSolve, TakesAtMostTwentyNewtonIterationsOnEveryMesh) {
+  for (int n = 10; n <= 50; ++n) {
+    const Problem p = MakeProblem("block", {{"n", std::to_string(n)}});
+    const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0),
+                           p.scales};
+    StartPoint cold;
+    cold.kind = StartKind::kCold;
+    for (const EtaCase eta : {EtaCase::kCase1, EtaCase::kCase2}) {
+      ImplicitFbOptions o;
+      o.eta = eta;
+      o.solver = "newton";
+      ImplicitFb formulation(o);
+      const StepResult result = formulation.Solve(step, cold);
+      const std::string where =
+          "n = " + std::to_string(n) + ", eta " + std::to_string(static_cast<int>(eta));
+      EXPECT_EQ(result.status, Status::kConverged) << where << ": " << result.message;
+      EXPECT_LE(result.counts.iterations, 20) << where;
+      EXPECT_TRUE(Judge(step, result.point, 1e-8).verified) << where;
+    }
+  }
+}
+
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
 // The condensed Newton step ("cholmod": elimination of g and r, Cholesky of the stiffness plus
 // the pair springs, border by block elimination, refinement on the full system) equals the

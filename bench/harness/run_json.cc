@@ -8,6 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/blas_info.h"
+
 namespace cb::harness {
 
 namespace {
@@ -34,6 +36,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
   nlohmann::ordered_json j;
   j["version"] = CONTACTBENCH_VERSION;
   j["commit"] = OrNull(CONTACTBENCH_COMMIT);
+  j["blas"] = BlasDescription(LoadedBlas());
   j["command_line"] = run.command_line;
   j["command"] = run.command;
   j["problem"] = OrNull(run.problem);

@@ -36,12 +36,20 @@ ImplicitFbStart MakeImplicitFbStart(const StepProblem& step, const StartPoint& s
 
 // --- the formulation ---------------------------------------------------------------------------
 
-ImplicitFb::ImplicitFb(ImplicitFbOptions options)
-    : options_(std::move(options)), cache_(ImplicitFbSystem::MakePatternCache()) {
+namespace {
+
+ImplicitFbOptions Validated(ImplicitFbOptions options) {
   std::string why;
-  if (!options_.IsValid(&why)) throw std::invalid_argument("implicit-fb options: " + why);
-  solver_ = MakeEquationSolver(options_.solver, options_.solver_options);
+  if (!options.IsValid(&why)) throw std::invalid_argument("implicit-fb options: " + why);
+  return options;
 }
+
+}  // namespace
+
+ImplicitFb::ImplicitFb(ImplicitFbOptions options)
+    : options_(Validated(std::move(options))),
+      solvers_(options_.solver, options_.solver_options),
+      cache_(ImplicitFbSystem::MakePatternCache()) {}
 
 ImplicitFb::~ImplicitFb() = default;
 
@@ -61,7 +69,7 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
   const StepEquationLayout& l = system.layout();
   Vec x = initial.x;
 
-  RunStepEquationSolver(*solver_, system, &x, controls, result);
+  RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result);
   result->details["gamma"] = std::to_string(initial.gamma);
   result->details["rho0"] = std::to_string(initial.x[l.rho()]);
   result->details["rho"] = std::to_string(x[l.rho()]);

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "formulations/common/config.h"
+#include "formulations/common/start_solvers.h"
 #include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/implicit_fb/implicit_fb_system.h"
 #include "solvers/equation_solver.h"
@@ -67,7 +68,7 @@ class ImplicitFb final : public Formulation {
                StepResult* result) override;
 
   ImplicitFbOptions options_;
-  std::unique_ptr<EquationSolver> solver_;
+  StartSolvers solvers_;
   std::shared_ptr<ImplicitFbSystem::PatternCache> cache_;
 };
 

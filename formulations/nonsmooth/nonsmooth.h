@@ -54,6 +54,7 @@
 #include <string>
 
 #include "formulations/common/config.h"
+#include "formulations/common/start_solvers.h"
 #include "formulations/common/step_equations.h"
 #include "step/formulation.h"
 
@@ -115,7 +116,7 @@ class NonsmoothFormulation final : public Formulation {
                StepResult* result) override;
 
   NonsmoothOptions options_;
-  std::unique_ptr<EquationSolver> solver_;
+  StartSolvers solvers_;
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };
 

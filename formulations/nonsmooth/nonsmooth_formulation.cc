@@ -29,12 +29,22 @@ bool NonsmoothOptions::IsValid(std::string* why) const {
 
 // --- the formulation -------------------------------------------------------------------------
 
-NonsmoothFormulation::NonsmoothFormulation(NonsmoothOptions options)
-    : options_(std::move(options)), cache_(StepEquationSystem::MakePatternCache()) {
+namespace {
+
+NonsmoothOptions Validated(NonsmoothOptions options) {
   std::string why;
-  if (!options_.IsValid(&why)) throw std::invalid_argument(name() + " options: " + why);
-  solver_ = MakeEquationSolver(options_.solver, options_.solver_options);
+  if (!options.IsValid(&why)) {
+    throw std::invalid_argument(NonsmoothName(options.function) + " options: " + why);
+  }
+  return options;
 }
+
+}  // namespace
+
+NonsmoothFormulation::NonsmoothFormulation(NonsmoothOptions options)
+    : options_(Validated(std::move(options))),
+      solvers_(options_.solver, options_.solver_options),
+      cache_(StepEquationSystem::MakePatternCache()) {}
 
 NonsmoothFormulation::~NonsmoothFormulation() = default;
 
@@ -77,7 +87,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
     seen.push_back(std::move(a));
   };
   SolverSummary summary =
-      RunStepEquationSolver(*solver_, system, &x, controls, result, on_iteration);
+      RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result, on_iteration);
 
   const StepConstraint& c = step.constraint;
   const bool restart = options_.restart && summary.status != Status::kConverged &&
@@ -143,7 +153,8 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
     const SolveCounts first = result->counts;
     const std::string first_message = result->message;
     seen.push_back(active_set(x));
-    summary = RunStepEquationSolver(*solver_, system, &x, controls, result, on_iteration);
+    summary =
+        RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result, on_iteration);
     result->counts.iterations += first.iterations;
     result->counts.residual_evals += first.residual_evals;
     result->counts.jacobian_evals += first.jacobian_evals;

@@ -46,6 +46,10 @@ bool SolverOptions::IsValid(std::string* why) const {
   if (max_backtracks < 1) {
     return Invalid(why, "max_backtracks must be >= 1, got " + std::to_string(max_backtracks));
   }
+  if (nonmonotone_window < 1) {
+    return Invalid(why,
+                   "nonmonotone_window must be >= 1, got " + std::to_string(nonmonotone_window));
+  }
   if (!(backtrack_min > 0.0)) {
     return Invalid(why, "backtrack_min must be positive, got " + std::to_string(backtrack_min));
   }

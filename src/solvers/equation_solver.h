@@ -32,6 +32,16 @@ struct SolverOptions {
   // Interpolated step factors are clipped to [backtrack_min, backtrack_max] times the last.
   double backtrack_min = 0.1;
   double backtrack_max = 0.5;
+  // Newton's stall guard: once two iterations in a row had their full step rejected, the
+  // sufficient decrease is measured from the largest merit of the last nonmonotone_window
+  // iterates instead of the current one, for the rest of the solve (the nonmonotone test of
+  // Grippo, Lampariello and Lucidi, SIAM J. Numer. Anal. 23 (1986)); 1 keeps the search
+  // monotone. On the smoothed path from a cold start the full step can raise m ~10x for a few
+  // iterations on its way to the quadratic phase; a monotone search then takes steps of
+  // backtrack_min, each lowering m by only 19%. Solves whose full steps are accepted (most warm
+  // path steps) keep the monotone test, which does not let an iterate wander off towards
+  // another solution (another branch of the path).
+  int nonmonotone_window = 5;
 
   // Trust-region dogleg: initial radius = initial_radius_factor * max(1, ||x0||_2); a step is
   // accepted when actual/predicted reduction of m exceeds accept_ratio.

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "solvers/solver_common.h"
 
@@ -30,6 +31,13 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     return summary;
   }
 
+  // The merits of the last nonmonotone_window iterates, and whether the search has stalled: after
+  // kStallIterations iterations in a row whose full step was rejected, the Armijo test is
+  // measured from the largest of them for the rest of the solve (SolverOptions).
+  constexpr int kStallIterations = 2;
+  std::vector<double> recent(1, merit);
+  int damped_in_a_row = 0;
+  bool nonmonotone = false;
   for (int k = 1; k <= options_.max_iterations; ++k) {
     const auto at = [k] { return internal::At(k); };
     if (!internal::EvaluateJacobian(system, *x, &jacobian_, &summary)) {
@@ -51,7 +59,8 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
 
     double trial_merit = 0.0;
     const internal::LineSearchResult search = internal::BacktrackingLineSearch(
-        system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit, dx_, &x_trial_,
+        system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit,
+        nonmonotone ? *std::max_element(recent.begin(), recent.end()) : merit, dx_, &x_trial_,
         &f_trial_, &trial_merit, &summary);
     if (!search.accepted) {
       Finish(
@@ -65,6 +74,10 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     *x = x_trial_;
     f_.swap(f_trial_);
     merit = trial_merit;
+    recent.push_back(merit);
+    if (static_cast<int>(recent.size()) > options_.nonmonotone_window) recent.erase(recent.begin());
+    damped_in_a_row = search.step < 1.0 ? damped_in_a_row + 1 : 0;
+    nonmonotone = nonmonotone || damped_in_a_row >= kStallIterations;
     if (internal::EndIteration(k, merit, f_, search.step, x, options_.residual_tol, callback,
                                &summary)) {
       return summary;

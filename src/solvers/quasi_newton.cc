@@ -69,9 +69,9 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
         }
         dx_ = -dx_;
       }
-      search = internal::BacktrackingLineSearch(system, options_,
-                                                internal::DecreaseTest::kNormDecrease, *x, merit,
-                                                dx_, &x_trial_, &f_trial_, &trial_merit, &summary);
+      search = internal::BacktrackingLineSearch(
+          system, options_, internal::DecreaseTest::kNormDecrease, *x, merit, merit, dx_, &x_trial_,
+          &f_trial_, &trial_merit, &summary);
       if (search.accepted) break;
       if (fresh) {
         Finish(Status::kFailed,

@@ -53,8 +53,8 @@ void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::st
 
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
-                                        const Vec& dx, Vec* x_trial, Vec* f_trial,
-                                        double* merit_trial, SolverSummary* summary) {
+                                        double reference_merit, const Vec& dx, Vec* x_trial,
+                                        Vec* f_trial, double* merit_trial, SolverSummary* summary) {
   LineSearchResult result;
   const double dx_inf = InfNorm(dx);
   const double too_short = options.step_tol * (1.0 + InfNorm(x));
@@ -71,7 +71,7 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
     if (evaluated) {
       const double m = 0.5 * f_trial->squaredNorm();
       const double bound = test == DecreaseTest::kArmijoNewtonSlope
-                               ? merit + options.armijo * a * slope
+                               ? reference_merit + options.armijo * a * slope
                                : merit * (1.0 - options.armijo * a) * (1.0 - options.armijo * a);
       if (m <= bound) {
         result.accepted = true;

@@ -38,8 +38,9 @@ void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::st
 
 // Sufficient-decrease tests of the backtracking line search at a trial factor a.
 enum class DecreaseTest {
-  // Armijo on m with the Newton slope m'(x; dx) = -||F||^2 (exact for dx = -J^{-1} F):
-  //   m(x + a dx) <= (1 - 2 armijo a) m(x).
+  // Armijo on m with the Newton slope m'(x; dx) = -||F||^2 (exact for dx = -J^{-1} F),
+  // from a reference merit m_ref >= m(x) (m(x) itself for a monotone search):
+  //   m(x + a dx) <= m_ref - 2 armijo a m(x).
   kArmijoNewtonSlope,
   // Derivative-free decrease of the norm (Griewank; Li and Fukushima), for directions that
   // are not known to be descent directions (quasi-Newton):
@@ -54,7 +55,9 @@ struct LineSearchResult {
   bool too_short = false;  // gave up because a dx no longer changes x (stagnation)
 };
 
-// Backtracking from a = 1 along dx. A trial whose residual cannot be evaluated is a failed
+// Backtracking from a = 1 along dx, with the Armijo test measured from reference_merit >= merit
+// (the nonmonotone test of SolverOptions::nonmonotone_window; merit for a monotone search; the
+// norm-decrease test always uses merit).. A trial whose residual cannot be evaluated is a failed
 // trial; the factor is then halved (capped by backtrack_max), since there is no value to
 // interpolate. Otherwise the next factor minimises the quadratic through m(0), the Newton slope
 // -2 m(0) and m(a), clipped to [backtrack_min, backtrack_max] * a, so a wrong slope (a
@@ -62,8 +65,8 @@ struct LineSearchResult {
 // *f_trial, *merit_trial hold the accepted point.
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
-                                        const Vec& dx, Vec* x_trial, Vec* f_trial,
-                                        double* merit_trial, SolverSummary* summary);
+                                        double reference_merit, const Vec& dx, Vec* x_trial,
+                                        Vec* f_trial, double* merit_trial, SolverSummary* summary);
 
 // Fills the summary's final fields and status.
 void Finish(Status status, std::string message, double merit, const Vec& f, SolverSummary* summary);
