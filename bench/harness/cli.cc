@@ -313,6 +313,14 @@ int Compare(const RunArguments& a, RunJson* record) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // The reference traces the path every formulation replays: one that cannot take the
+  // problem's steps is a bad argument, refused before any work.
+  std::string refusal;
+  if (a.mode == "replay" &&
+      !reference->Accepts(FirstStep(problem, MakePathOptions(a, problem)), &refusal)) {
+    throw UsageError("--reference " + reference->name() + ": " + refusal + " (problem '" +
+                     problem.name + "')");
+  }
   DescribeArguments(a, problem, record);
   for (const auto& f : formulations) record->formulations.push_back(f->name());
   for (StartKind start : a.starts) record->starts.push_back(ToString(start));
