@@ -250,6 +250,11 @@ std::vector<BadCase> BadCases() {
       {"malformed", nullptr, nullptr, "{\n  \"kind\": \"truss\",\n  \"nodes\": [1,, 2]\n}\n",
        "line 3, column 15: malformed JSON"},
       {"overflow", nullptr, nullptr, R"({"kind": "lcp", "M": [[1e999]], "q": [1]})", "1e999"},
+      {"overflow_pointer", nullptr, nullptr,
+       R"({"kind": "lcp", "M": [[1, 2], [3, 1e400]], "q": [1, 2]})", "/M/1/1: malformed JSON"},
+      {"overflow_in_object", nullptr, nullptr,
+       R"({"kind": "lcp", "scales": {"length": 1e400}, "M": [[1]], "q": [1]})",
+       "/scales/length: malformed JSON: number overflow parsing '1e400'"},
       {"not_an_object", nullptr, nullptr, "[1, 2]", "/: a problem file is a JSON object"},
       {"missing_field", kTruss, [](json& j) { j.erase("members"); }, "",
        "/: missing field 'members'"},
@@ -272,7 +277,22 @@ std::vector<BadCase> BadCases() {
        [](json& j) {
          j["nodes"][1]["x"] = {0, 0};
        },
-       "", "/members/0/nodes: zero-length member"},
+       "", "/nodes/1: node 2 is at the same place as node 1 (/nodes/0)"},
+      {"duplicated_node", kTruss,
+       [](json& j) {
+         j["nodes"].push_back({{"id", 9}, {"x", {0.5, 0}}});
+       },
+       "", "/nodes/3: node 9 is at the same place as node 2 (/nodes/1)"},
+      {"q4_edge_1e-300", kQ4,
+       [](json& j) {
+         j["nodes"][1]["x"] = {1e-300, 0};
+       },
+       "", "/nodes/1: node 2 is at the same place as node 1"},
+      {"q4_degenerate_element", kQ4,
+       [](json& j) {
+         j["nodes"][1]["x"] = {1e-9, 0};
+       },
+       "", "/elements/0/nodes: degenerate: its side 0 has length 1e-09"},
       {"member_to_itself", kTruss,
        [](json& j) {
          j["members"][0]["nodes"] = {1, 1};
