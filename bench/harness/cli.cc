@@ -149,6 +149,9 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   } catch (const UsageError& e) {
     WriteRunJson(a.out, *record, kExitBadArguments, e.what());
     throw;
+  } catch (const Interrupted& e) {
+    WriteRunJson(a.out, *record, kExitInterrupted, e.what());
+    throw;
   } catch (const std::exception& e) {
     WriteRunJson(a.out, *record, kExitFailure, e.what());
     throw;
@@ -168,9 +171,11 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
     near.emplace();
     if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model), problem.load,
                            *reference, options, a.near_offset, &*near, &why)) {
-      *reason = "--start near: the reference solve failed (" + why + ")";
+      const bool interrupted = InterruptRequested();
+      *reason = interrupted ? "interrupted during --start near's reference solve (" + why + ")"
+                            : "--start near: the reference solve failed (" + why + ")";
       std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
-      return kExitFailure;
+      return interrupted ? kExitInterrupted : kExitFailure;
     }
   }
   RecordFiles files(a.out);
@@ -183,6 +188,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary =
       Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
+  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
   WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
   snapshots.Save(summary.final_state, summary.accepted_steps, "final");
   record->runs = 1;
@@ -416,6 +422,10 @@ int Main(int argc, char** argv) {
                 << " --help` describes the options.\n";
     }
     return kExitBadArguments;
+  } catch (const Interrupted& e) {
+    std::cerr << "contactbench: " << e.what()
+              << "; the run stopped (the records written before are kept whole)\n";
+    return kExitInterrupted;
   } catch (const WriteError& e) {
     std::cerr << "contactbench: " << e.what()
               << "; the run stopped (the records written before are kept whole)\n";
