@@ -770,3 +770,53 @@ TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
 }
 
 }  // namespace
+
+// --- memory ------------------------------------------------------------------------------------
+
+namespace {
+
+// A problem whose estimated memory exceeds the limit is refused at once, before it is built
+// and before --out is touched; the limit is lowered for the test through the variable that
+// replaces the machine's.
+TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
+  const auto dir = TempDir("memory_refused");
+  for (const char* n : {"100", "2000"}) {
+    const Outcome o = Capture("CONTACTBENCH_MEMORY_LIMIT=1e8 " + std::string(CONTACTBENCH_BINARY) +
+                              " run --problem block --set n=" + std::string(n) +
+                              " --formulation implicit-fb --out " + dir.string() + " 2>&1");
+    EXPECT_EQ(o.status, 2) << o.output;
+    EXPECT_NE(o.output.find("--problem block needs an estimated"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("CONTACTBENCH_MEMORY_LIMIT"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("--allow-memory"), std::string::npos) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << "work started for n=" << n;
+  }
+  // The same limit lets a small problem through.
+  const Outcome small = Capture(
+      "CONTACTBENCH_MEMORY_LIMIT=1e9 " + std::string(CONTACTBENCH_BINARY) +
+      " run --problem block --set n=4 --formulation implicit-fb --out " + dir.string() + " 2>&1");
+  EXPECT_EQ(small.status, 0) << small.output;
+  std::filesystem::remove_all(dir);
+}
+
+// Under an address-space limit (RLIMIT_AS, from `ulimit -v`) the problem is refused naming that
+// limit; insisted on with --allow-memory, the std::bad_alloc is reported as what ran out of
+// memory (here the build of the problem), with exit 3.
+TEST(CliTest, RunningOutOfMemorySaysWhileDoingWhat) {
+  const auto dir = TempDir("memory_bad_alloc");
+  const std::string run = "ulimit -v 250000; " + std::string(CONTACTBENCH_BINARY) +
+                          " run --problem block --set n=300 --formulation implicit-fb --out " +
+                          dir.string();
+  const Outcome refused = Capture("(" + run + ") 2>&1");
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("(RLIMIT_AS)"), std::string::npos) << refused.output;
+  const Outcome insisted = Capture("(" + run + " --allow-memory) 2>&1");
+  EXPECT_EQ(insisted.status, 3) << insisted.output;
+  EXPECT_NE(insisted.output.find("contactbench: out of memory while building the problem"),
+            std::string::npos)
+      << insisted.output;
+  // Built before --out is claimed: nothing was written there.
+  EXPECT_FALSE(std::filesystem::exists(dir / "steps.csv"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

@@ -291,6 +291,10 @@ std::vector<Option> MakeOptions() {
            Refuse(o, "the parameter '" + key + "' is given twice");
          }
        }},
+      {"--allow-memory", "", kProblemCommands, Need::kOptional, false,
+       "run a problem whose estimated memory exceeds what the machine has (MemAvailable, the "
+       "memory cgroup's limit, RLIMIT_AS); without it such a problem is refused at once",
+       nullptr, [](O, S, A* a) { a->allow_memory = true; }},
       {"--option", "KEY=VALUE", kRun, Need::kOptional, true,
        "a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); given as "
        "FORMULATION:KEY=VALUE, only for the formulation named",
