@@ -482,6 +482,10 @@ int Main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "contactbench: error: " << e.what() << "\n";
     return kExitFailure;
+  } catch (...) {
+    // Not a std::exception (a backend's own type): still a failure with a status, not abort().
+    std::cerr << "contactbench: error: an exception of unknown type\n";
+    return kExitFailure;
   }
 }
 

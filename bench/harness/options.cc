@@ -419,8 +419,9 @@ std::string UsageLine(const CommandInfo& command, const std::string& prefix) {
 }
 
 constexpr const char* kExitStatus =
-    "Exit status: 0 every step verified; 2 bad arguments (or a bad problem file, or an output "
-    "that cannot be written); 3 stopped on a failure (records kept); 4 interrupted by SIGINT or "
+    "Exit status: 0 every step verified; 2 bad arguments (or a bad problem file, a problem too "
+    "large for the memory, or an output that cannot be written); 3 stopped on a failure (a "
+    "step, a stagnating path, a write, out of memory; records kept); 4 interrupted by SIGINT or "
     "SIGTERM (records kept).";
 
 void ApplyCompareDefaults(RunArguments* a) {
