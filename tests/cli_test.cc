@@ -208,6 +208,21 @@ TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
       {run + "--max-cutbacks -1", "--max-cutbacks"},
       {run + "--eta 2.5", "--eta"},
       {run + "--steps 5 --steps 6", "--steps is given twice"},
+      {run + "--steps 0x10", "--steps: '0x10' is not a decimal integer"},
+      {run + "--steps 1e1", "--steps: '1e1' is not a decimal integer"},
+      {run + "--arc-length 0x1p-3", "--arc-length: '0x1p-3' is not a decimal number"},
+      {run + "--arc-length 1e-320", "--arc-length: '1e-320' is too small: below the smallest"},
+      {run + "--arc-length 1e-400", "--arc-length: '1e-400' is too small: it underflows to 0"},
+      {run + "--arc-length 1e400", "--arc-length: must be finite"},
+      {"run --problem block --formulation implicit-fb --set n=4 --set n=6 --out " + dir,
+       "--set: the parameter 'n' is given twice"},
+      {"compare --problem two-bar --formulations , --out " + dir,
+       "--formulations: the list ',' names nothing"},
+      {"compare --problem two-bar --formulations implicit-fb,,active-set --out " + dir,
+       "--formulations: the list 'implicit-fb,,active-set' has an empty name"},
+      {"compare --problem two-bar --starts , --out " + dir, "--starts: the list ',' names"},
+      // Without Ipopt in the build: "ipopt-energy: this build has no Ipopt", also status 2.
+      {"compare --problem two-bar --reference ipopt-energy --out " + dir, "ipopt-energy"},
       {run + "--problem-file x.json", "either --problem or --problem-file"},
       {"run --formulation implicit-fb --out " + dir, "--problem-file"},
       {"export --problem two-bar", "--out"},
@@ -752,6 +767,81 @@ TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
     EXPECT_EQ(o.status, 2) << c.file << "\n" << o.output;
     EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.file << "\n" << o.output;
   }
+}
+
+}  // namespace
+
+// --- memory ------------------------------------------------------------------------------------
+
+namespace {
+
+// A problem whose estimated memory exceeds the limit is refused at once, before it is built
+// and before --out is touched; the limit is lowered for the test through the variable that
+// replaces the machine's.
+TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
+  const auto dir = TempDir("memory_refused");
+  for (const char* n : {"100", "2000"}) {
+    const Outcome o = Capture("CONTACTBENCH_MEMORY_LIMIT=1e8 " + std::string(CONTACTBENCH_BINARY) +
+                              " run --problem block --set n=" + std::string(n) +
+                              " --formulation implicit-fb --out " + dir.string() + " 2>&1");
+    EXPECT_EQ(o.status, 2) << o.output;
+    EXPECT_NE(o.output.find("--problem block needs an estimated"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("CONTACTBENCH_MEMORY_LIMIT"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("--allow-memory"), std::string::npos) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << "work started for n=" << n;
+  }
+  // The same limit lets a small problem through.
+  const Outcome small = Capture(
+      "CONTACTBENCH_MEMORY_LIMIT=1e9 " + std::string(CONTACTBENCH_BINARY) +
+      " run --problem block --set n=4 --formulation implicit-fb --out " + dir.string() + " 2>&1");
+  EXPECT_EQ(small.status, 0) << small.output;
+  std::filesystem::remove_all(dir);
+}
+
+// Under an address-space limit (RLIMIT_AS, from `ulimit -v`) the problem is refused naming that
+// limit; insisted on with --allow-memory, the std::bad_alloc is reported as what ran out of
+// memory (here the build of the problem), with exit 3.
+TEST(CliTest, RunningOutOfMemorySaysWhileDoingWhat) {
+  const auto dir = TempDir("memory_bad_alloc");
+  const std::string run = "ulimit -v 250000; " + std::string(CONTACTBENCH_BINARY) +
+                          " run --problem block --set n=300 --formulation implicit-fb --out " +
+                          dir.string();
+  const Outcome refused = Capture("(" + run + ") 2>&1");
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("(RLIMIT_AS)"), std::string::npos) << refused.output;
+  const Outcome insisted = Capture("(" + run + " --allow-memory) 2>&1");
+  EXPECT_EQ(insisted.status, 3) << insisted.output;
+  EXPECT_NE(insisted.output.find("contactbench: out of memory while building the problem"),
+            std::string::npos)
+      << insisted.output;
+  // Built before --out is claimed: nothing was written there.
+  EXPECT_FALSE(std::filesystem::exists(dir / "steps.csv"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// ipopt-mpcc on a steeper two-bar truss pressed onto its floor: on the floor its steps crawl at
+// arc lengths ~1e-5 (twice that ends "Solved_To_Acceptable_Level" with comp_res ~2e-4), which
+// ran on to the last step and exited 0. The path now stops as stagnating: exit 3, the reason in
+// the summary and in run.json.
+TEST(CliTest, AStagnatingPathExitsWith3SayingSo) {
+#ifndef CONTACTBENCH_HAVE_IPOPT
+  GTEST_SKIP() << "built without Ipopt";
+#endif
+  const auto dir = TempDir("stagnation");
+  const Outcome o = RunCli(
+      "run --problem two-bar-obstacle --set height=1 --formulation ipopt-mpcc --arc-length 0.02 "
+      "--steps 200 --out " +
+      dir.string());
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find("the path stagnates: steps"), std::string::npos) << o.output;
+  const auto json = nlohmann::json::parse(std::ifstream(dir / "run.json"));
+  EXPECT_EQ(json["exit_status"], 3);
+  EXPECT_EQ(json["reason"].get<std::string>().rfind("the path stagnates", 0), 0u) << json.dump();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -255,6 +255,45 @@ TEST(InterruptTest, CompareStopsWithStatus4AndWholeRecords) {
   std::filesystem::remove_all(dir);
 }
 
+// Waits until `file` exists (true) or the process ended or 120 s passed.
+bool WaitForFile(pid_t pid, const std::filesystem::path& file) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (std::filesystem::exists(file)) return true;
+    int raw = 0;
+    if (waitpid(pid, &raw, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+// --start near first solves the problem with the reference formulation, before any record is
+// written: an interrupt there is an interruption (4), not a failed reference solve (3).
+TEST(InterruptTest, AnInterruptDuringTheNearStartsReferenceSolveExits4) {
+  const auto dir = TempDir("near");
+  std::filesystem::create_directories(dir);
+  const auto out = dir / "out";
+  const pid_t pid = Start({"run", "--problem", "block", "--set", "n=200", "--formulation",
+                           "implicit-fb", "--start", "near", "--out", out.string()},
+                          dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  // The lock is taken once the problem is built; the reference solve (seconds at n = 200)
+  // starts right after it.
+  ASSERT_TRUE(WaitForFile(pid, out / ".contactbench.lock")) << ReadText(dir / "log.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  const int raw = Wait(pid);
+  const std::string said = ReadText(dir / "log.txt");
+  ASSERT_TRUE(WIFEXITED(raw)) << raw << "\n" << said;
+  EXPECT_EQ(WEXITSTATUS(raw), 4) << said;
+  EXPECT_NE(said.find("interrupted during --start near's reference solve"), std::string::npos)
+      << said;
+  const auto run = nlohmann::json::parse(ReadText(out / "run.json"));
+  EXPECT_EQ(run["exit_status"], 4) << run.dump();
+  EXPECT_FALSE(std::filesystem::exists(out / "steps.csv"));
+  std::filesystem::remove_all(dir);
+}
+
 // A second run into the directory of a running one is refused before it writes anything, and
 // names the first one's pid; the first one's records stay its own.
 TEST(InterruptTest, ASecondRunIntoTheSameDirectoryIsRefused) {

@@ -451,8 +451,7 @@ INSTANTIATE_TEST_SUITE_P(
                       PathCase{"two-bar-obstacle", "scholtes", StartKind::kCold},
                       PathCase{"arch-curved", "penalty", StartKind::kWarm},
                       PathCase{"arch-curved", "penalty", StartKind::kCold},
-                      PathCase{"arch-curved", "scholtes", StartKind::kWarm},
-                      PathCase{"arch-curved", "scholtes", StartKind::kCold}),
+                      PathCase{"arch-curved", "scholtes", StartKind::kWarm}),
     [](const ::testing::TestParamInfo<PathCase>& info) {
       std::string name =
           info.param.problem + "_" + info.param.reformulation + "_" + ToString(info.param.start);
@@ -461,6 +460,25 @@ INSTANTIATE_TEST_SUITE_P(
       }
       return name;
     });
+
+// Cold-started Scholtes steps on the small arch go back and forth between the same states once
+// past lambda 0.27 (each verified, with spurious kinks and limit points between them): the
+// driver stops the path as retracing itself instead of calling it converged.
+TEST(IpoptTest, MpccScholtesColdOnTheArchIsStoppedAsRetracing) {
+  SKIP_WITHOUT_IPOPT();
+  const Problem p = SmallArch();
+  auto f = Make("ipopt-mpcc", {{"reformulation", "scholtes"}});
+  const PathRun run = TraceWith(p, *f, 20, p.arc_length, StartKind::kCold);
+  EXPECT_EQ(run.summary.status, Status::kFailed);
+  EXPECT_NE(run.summary.message.find("retraces itself"), std::string::npos) << run.summary.message;
+  // It does retrace: the last three accepted increments alternate in sign of dlambda.
+  const auto& a = run.collector.accepted;
+  ASSERT_GE(a.size(), 4u);
+  for (std::size_t k = a.size() - 3; k < a.size(); ++k) {
+    EXPECT_LT(a[k].result.point.dlambda * a[k - 1].result.point.dlambda, 0.0) << k;
+  }
+  EXPECT_LT(run.summary.accepted_steps, 20);
+}
 
 // Past the snap-through the two-bar truss lands on its floor: warm-started ipopt-mpcc follows the
 // contact branch and its kink solve (53) lands where the closed form says (as in path_test.cc).

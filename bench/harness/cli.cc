@@ -1,10 +1,12 @@
 #include "harness/cli.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +14,7 @@
 
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
+#include "harness/memory_budget.h"
 #include "harness/options.h"
 #include "harness/output_directory.h"
 #include "harness/records.h"
@@ -114,13 +117,44 @@ void PrepareOutput(const std::string& dir) {
 
 // The problem of --problem NAME or --problem-file F, with --set applied. Bad input (an unknown
 // name, a bad setting, an invalid problem file) is a usage error.
-Problem LoadProblem(const RunArguments& a) {
+// The memory `model` needs by the model of memory_budget.h: each pair acts on at most two dofs
+// (a node against a half-space in the plane).
+MemoryEstimate EstimateOf(double dofs, double pairs) {
+  return {dofs, pairs, std::min(dofs, 2.0 * pairs)};
+}
+
+// The size of the block (P1) known before it is built: (n+1)^2 nodes of 2 dofs, and 2(n+1)
+// pairs on the wall and the floor (problems/block.cc). The other named problems are trusses
+// too small to matter before they are built.
+std::optional<MemoryEstimate> PredictedEstimate(const RunArguments& a) {
+  if (!a.problem_file.empty() || a.problem != "block") return std::nullopt;
+  const auto n = a.settings.find("n");
+  if (n == a.settings.end()) return std::nullopt;  // the default, 50, is small
+  double cells = 0.0;
   try {
-    if (!a.problem_file.empty()) return io::LoadProblemFile(a.problem_file, a.settings);
-    return MakeProblem(a.problem, a.settings);
+    cells = std::stod(n->second);
+  } catch (const std::exception&) {
+    return std::nullopt;  // refused by the problem's own check, with its message
+  }
+  if (!(cells >= 0.0 && cells <= 1e6)) return std::nullopt;
+  return EstimateOf(2.0 * (cells + 1.0) * (cells + 1.0), 2.0 * (cells + 1.0));
+}
+
+Problem LoadProblem(const RunArguments& a) {
+  const std::string what =
+      a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
+  if (const auto predicted = PredictedEstimate(a)) CheckMemory(*predicted, what, a.allow_memory);
+  const Activity building("building the problem");
+  Problem problem;
+  try {
+    problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
+                                      : MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  CheckMemory(EstimateOf(problem.model->num_dofs(), problem.model->num_pairs()), what,
+              a.allow_memory);
+  return problem;
 }
 
 // What run.json records of the arguments, before anything runs.
@@ -149,6 +183,13 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   } catch (const UsageError& e) {
     WriteRunJson(a.out, *record, kExitBadArguments, e.what());
     throw;
+  } catch (const Interrupted& e) {
+    WriteRunJson(a.out, *record, kExitInterrupted, e.what());
+    throw;
+  } catch (const std::bad_alloc&) {
+    WriteRunJson(a.out, *record, kExitFailure,
+                 std::string("out of memory while ") + Activity::Current());
+    throw;
   } catch (const std::exception& e) {
     WriteRunJson(a.out, *record, kExitFailure, e.what());
     throw;
@@ -164,13 +205,16 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   std::optional<State> near;
   if (a.start_near) {
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
+    const Activity solving("solving --start near's reference problem");
     std::string why;
     near.emplace();
     if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model), problem.load,
                            *reference, options, a.near_offset, &*near, &why)) {
-      *reason = "--start near: the reference solve failed (" + why + ")";
+      const bool interrupted = InterruptRequested();
+      *reason = interrupted ? "interrupted during --start near's reference solve (" + why + ")"
+                            : "--start near: the reference solve failed (" + why + ")";
       std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
-      return kExitFailure;
+      return interrupted ? kExitInterrupted : kExitFailure;
     }
   }
   RecordFiles files(a.out);
@@ -181,10 +225,16 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   WriteParameters(a.out, problem);
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
-  const PathSummary summary =
-      Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
-  WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
-  snapshots.Save(summary.final_state, summary.accepted_steps, "final");
+  const PathSummary summary = [&] {
+    const Activity solving("solving");
+    return Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
+  }();
+  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
+  {
+    const Activity writing("writing the final state");
+    WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
+    snapshots.Save(summary.final_state, summary.accepted_steps, "final");
+  }
   record->runs = 1;
   record->attempts = summary.attempts;
   record->accepted_steps = summary.accepted_steps;
@@ -235,6 +285,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
   const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
   RecordFiles files(a.out);
   RecordWriter<RunOutcomeRow> runs(a.out, RunsSchema());
+  const Activity comparing("comparing the formulations");
 
   // The reference path: the work every formulation is given in replay mode (warm start,
   // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
@@ -312,6 +363,14 @@ int Compare(const RunArguments& a, RunJson* record) {
     reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
+  }
+  // The reference traces the path every formulation replays: one that cannot take the
+  // problem's steps is a bad argument, refused before any work.
+  std::string refusal;
+  if (a.mode == "replay" &&
+      !reference->Accepts(FirstStep(problem, MakePathOptions(a, problem)), &refusal)) {
+    throw UsageError("--reference " + reference->name() + ": " + refusal + " (problem '" +
+                     problem.name + "')");
   }
   DescribeArguments(a, problem, record);
   for (const auto& f : formulations) record->formulations.push_back(f->name());
@@ -408,12 +467,24 @@ int Main(int argc, char** argv) {
                 << " --help` describes the options.\n";
     }
     return kExitBadArguments;
+  } catch (const Interrupted& e) {
+    std::cerr << "contactbench: " << e.what()
+              << "; the run stopped (the records written before are kept whole)\n";
+    return kExitInterrupted;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "contactbench: out of memory while " << Activity::Current()
+              << " (the records written before are kept whole)\n";
+    return kExitFailure;
   } catch (const WriteError& e) {
     std::cerr << "contactbench: " << e.what()
               << "; the run stopped (the records written before are kept whole)\n";
     return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "contactbench: error: " << e.what() << "\n";
+    return kExitFailure;
+  } catch (...) {
+    // Not a std::exception (a backend's own type): still a failure with a status, not abort().
+    std::cerr << "contactbench: error: an exception of unknown type\n";
     return kExitFailure;
   }
 }

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <string>
 
 namespace cb::harness {
 
@@ -18,5 +19,11 @@ void InstallInterruptHandlers() {
 }
 
 bool InterruptRequested() { return g_interrupted.load(); }
+
+void AcknowledgeInterrupt() { g_interrupted.store(false); }
+
+void StopIfInterrupted(const char* doing) {
+  if (InterruptRequested()) throw Interrupted(std::string("interrupted while ") + doing);
+}
 
 }  // namespace cb::harness

@@ -4,11 +4,28 @@
 // kExitInterrupted. The suite driver installs them first thing in main().
 #pragma once
 
+#include <stdexcept>
+
 namespace cb::harness {
+
+// Where the harness itself does long work outside the path driver (writing the final state or
+// a saved state, the cells of a large mesh), it checks for an interrupt as it goes and unwinds
+// with this: the run ends with kExitInterrupted, the lines written so far whole.
+struct Interrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 void InstallInterruptHandlers();
 
 // True once SIGINT or SIGTERM arrived.
 bool InterruptRequested();
+
+// Throws Interrupted("interrupted while <doing>") once SIGINT or SIGTERM arrived.
+void StopIfInterrupted(const char* doing);
+
+// Takes note of the interrupt that stopped the path: InterruptRequested() is false again until
+// the next signal, so that the records of what was done (the final state) are written, and a
+// second signal stops those writes too.
+void AcknowledgeInterrupt();
 
 }  // namespace cb::harness

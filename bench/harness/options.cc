@@ -1,8 +1,11 @@
 #include "harness/options.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -25,25 +28,62 @@ bool Contains(const std::vector<std::string>& items, const std::string& item) {
 
 // --- values --------------------------------------------------------------------------------
 
-double ParseNumber(const Option& option, const std::string& text) {
-  double v = 0.0;
-  try {
-    std::size_t used = 0;
-    v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-  } catch (const std::exception&) {
-    Refuse(option, "'" + text + "' is not a number");
+// Decimal notation only ("16", "-2.5", "1e-3"): strtod would also read hexadecimal ("0x10"),
+// "inf" and "nan", which no option means.
+bool IsDecimalNumber(const std::string& text) {
+  std::size_t i = 0;
+  auto digits = [&] {
+    const std::size_t start = i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+    return i > start;
+  };
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  bool mantissa = digits();
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    mantissa = digits() || mantissa;
   }
+  if (!mantissa) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == text.size();
+}
+
+double ParseNumber(const Option& option, const std::string& text) {
+  const std::string lower = [&] {
+    std::string l = text;
+    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  }();
+  if (lower.find("inf") != std::string::npos) Refuse(option, "must be finite, got '" + text + "'");
+  if (!IsDecimalNumber(text)) Refuse(option, "'" + text + "' is not a decimal number");
+  errno = 0;
+  const double v = std::strtod(text.c_str(), nullptr);
   if (!std::isfinite(v)) Refuse(option, "must be finite, got '" + text + "'");
+  // A value below the smallest normal double is rounded to a subnormal or to 0 (ERANGE): say
+  // so, rather than use a number that is not the one written.
+  if (v != 0.0 && !std::isnormal(v)) {
+    Refuse(option, "'" + text + "' is too small: below the smallest normal double (2.2e-308)");
+  }
+  if (errno == ERANGE && v == 0.0) {
+    Refuse(option, "'" + text + "' is too small: it underflows to 0");
+  }
   return v;
 }
 
 int ParseInteger(const Option& option, const std::string& text) {
+  const bool decimal_integer =
+      !text.empty() &&
+      std::all_of(text.begin() + (text[0] == '-' || text[0] == '+' ? 1 : 0), text.end(),
+                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }) &&
+      text != "-" && text != "+";
+  if (!decimal_integer) Refuse(option, "'" + text + "' is not a decimal integer");
   const double v = ParseNumber(option, text);
   // Range first: converting a double outside int's range is undefined.
-  if (v != std::floor(v) || v < INT_MIN || v > INT_MAX) {
-    Refuse(option, "'" + text + "' is not an integer in range");
-  }
+  if (v < INT_MIN || v > INT_MAX) Refuse(option, "'" + text + "' is not an integer in range");
   return static_cast<int>(v);
 }
 
@@ -79,6 +119,17 @@ std::vector<std::string> SplitList(const std::string& text) {
     if (end > start) items.push_back(text.substr(start, end - start));
     if (comma == std::string::npos) break;
     start = comma + 1;
+  }
+  return items;
+}
+
+// A comma-separated list with no empty item ("a,,b", ",", "" are refused: an empty list would
+// silently mean the default).
+std::vector<std::string> NonEmptyList(const Option& option, const std::string& text) {
+  const std::vector<std::string> items = SplitList(text);
+  if (items.empty()) Refuse(option, "the list '" + text + "' names nothing");
+  if (std::count(text.begin(), text.end(), ',') + 1 != static_cast<long>(items.size())) {
+    Refuse(option, "the list '" + text + "' has an empty name");
   }
   return items;
 }
@@ -146,7 +197,7 @@ std::vector<Option> MakeOptions() {
       {"--formulations", "A,B,...", kCompare, Need::kOptional, false,
        "the formulations compared (default: every one built)", FormulationNames,
        [](O o, S v, A* a) {
-         a->formulations = SplitList(v);
+         a->formulations = NonEmptyList(o, v);
          for (const auto& f : a->formulations) Choice(o, f);
        }},
       {"--out", "DIR", kPathCommands, Need::kRequired, false,
@@ -196,7 +247,7 @@ std::vector<Option> MakeOptions() {
       {"--starts", "warm,cold", kCompare, Need::kOptional, false,
        "the starts each formulation is run with (default warm)", Starts,
        [](O o, S v, A* a) {
-         for (const auto& s : SplitList(v)) a->starts.push_back(ParseStart(Choice(o, s)));
+         for (const auto& s : NonEmptyList(o, v)) a->starts.push_back(ParseStart(Choice(o, s)));
        }},
       {"--mode", "replay|free", kCompare, Need::kOptional, false,
        "replay (default): every formulation solves the reference path's steps, each from the "
@@ -236,8 +287,14 @@ std::vector<Option> MakeOptions() {
        nullptr,
        [](O o, S v, A* a) {
          const auto [key, value] = KeyValue(o, v);
-         a->settings[key] = value;
+         if (!a->settings.emplace(key, value).second) {
+           Refuse(o, "the parameter '" + key + "' is given twice");
+         }
        }},
+      {"--allow-memory", "", kProblemCommands, Need::kOptional, false,
+       "run a problem whose estimated memory exceeds what the machine has (MemAvailable, the "
+       "memory cgroup's limit, RLIMIT_AS); without it such a problem is refused at once",
+       nullptr, [](O, S, A* a) { a->allow_memory = true; }},
       {"--option", "KEY=VALUE", kRun, Need::kOptional, true,
        "a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min); given as "
        "FORMULATION:KEY=VALUE, only for the formulation named",
@@ -362,8 +419,9 @@ std::string UsageLine(const CommandInfo& command, const std::string& prefix) {
 }
 
 constexpr const char* kExitStatus =
-    "Exit status: 0 every step verified; 2 bad arguments (or a bad problem file, or an output "
-    "that cannot be written); 3 stopped on a failure (records kept); 4 interrupted by SIGINT or "
+    "Exit status: 0 every step verified; 2 bad arguments (or a bad problem file, a problem too "
+    "large for the memory, or an output that cannot be written); 3 stopped on a failure (a "
+    "step, a stagnating path, a write, out of memory; records kept); 4 interrupted by SIGINT or "
     "SIGTERM (records kept).";
 
 void ApplyCompareDefaults(RunArguments* a) {

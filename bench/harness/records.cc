@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "harness/interrupt.h"
 #include "model/complementarity_model.h"
 
 namespace cb::harness {
@@ -73,9 +74,15 @@ namespace {
 void WriteBodyState(const std::string& directory, const BodyContactModel& model, const State& state,
                     int step) {
   RecordWriter<NodeRow> solution(directory, SolutionSchema(), model.body().dim());
-  for (const NodeRow& row : NodeRows(model, state, step, "final")) solution.Write(row);
+  for (const NodeRow& row : NodeRows(model, state, step, "final")) {
+    StopIfInterrupted("writing solution.csv");
+    solution.Write(row);
+  }
   RecordWriter<PairRow> contacts(directory, ContactsSchema());
-  for (const PairRow& row : PairRows(model, state, step, "final")) contacts.Write(row);
+  for (const PairRow& row : PairRows(model, state, step, "final")) {
+    StopIfInterrupted("writing contacts.csv");
+    contacts.Write(row);
+  }
 }
 
 void WriteComplementarityState(const std::string& directory, const ComplementarityModel& model,
@@ -83,7 +90,10 @@ void WriteComplementarityState(const std::string& directory, const Complementari
   Vec w;
   model.InternalForce(state.u, &w);  // M z + q
   RecordWriter<ComplementarityRow> solution(directory, ComplementaritySolutionSchema());
-  for (int i = 0; i < model.num_dofs(); ++i) solution.Write({step, i, state.u[i], w[i]});
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    StopIfInterrupted("writing solution.csv");
+    solution.Write({step, i, state.u[i], w[i]});
+  }
 }
 
 }  // namespace

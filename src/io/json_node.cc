@@ -24,6 +24,71 @@ std::string LineColumn(const std::string& text, std::size_t byte) {
   return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
 }
 
+namespace {
+
+std::string Escape(const std::string& key);
+
+// Follows a SAX parse and knows the JSON pointer of the value being read: where a parse error
+// (a number that overflows a double) stopped it.
+class PointerTracker final : public nlohmann::json_sax<Json> {
+ public:
+  std::string pointer() const {
+    std::string p;
+    for (const Level& level : levels_) p += "/" + level.token;
+    return p;
+  }
+
+  bool null() override { return Value(); }
+  bool boolean(bool) override { return Value(); }
+  bool number_integer(number_integer_t) override { return Value(); }
+  bool number_unsigned(number_unsigned_t) override { return Value(); }
+  bool number_float(number_float_t, const string_t&) override { return Value(); }
+  bool string(string_t&) override { return Value(); }
+  bool binary(binary_t&) override { return Value(); }
+  bool start_object(std::size_t) override { return Open(false); }
+  bool key(string_t& key) override {
+    levels_.back().token = Escape(key);
+    return true;
+  }
+  bool end_object() override { return Close(); }
+  bool start_array(std::size_t) override { return Open(true); }
+  bool end_array() override { return Close(); }
+  // The value that failed is the next one read.
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    Enter();
+    return false;
+  }
+
+ private:
+  struct Level {
+    bool array = false;
+    int next = 0;       // an array's index of the next value
+    std::string token;  // the reference token of the value being read
+  };
+  // Before a value in an array: its index is the token.
+  void Enter() {
+    if (!levels_.empty() && levels_.back().array) {
+      levels_.back().token = std::to_string(levels_.back().next++);
+    }
+  }
+  bool Value() {
+    Enter();
+    return true;
+  }
+  bool Open(bool array) {
+    Enter();
+    levels_.push_back({array, 0, ""});
+    return true;
+  }
+  bool Close() {
+    levels_.pop_back();
+    return true;
+  }
+  std::vector<Level> levels_;
+};
+
+}  // namespace
+
 Json ParseJson(const std::string& text, const std::string& file) {
   try {
     return Json::parse(text);
@@ -36,11 +101,14 @@ Json ParseJson(const std::string& text, const std::string& file) {
     if (colon != std::string::npos) reason = reason.substr(colon + 2);
     throw InputError(file, LineColumn(text, e.byte), "malformed JSON: " + reason);
   } catch (const Json::exception& e) {
-    // A number too large for a double ("number overflow") is reported without a position.
+    // A number too large for a double ("number overflow"): nlohmann gives no position; a
+    // second pass that follows the document finds the JSON pointer of the number.
     std::string reason = e.what();
     const auto bracket = reason.find("] ");
     if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
-    throw InputError(file, "", "malformed JSON: " + reason);
+    PointerTracker tracker;
+    Json::sax_parse(text, &tracker);
+    throw InputError(file, tracker.pointer(), "malformed JSON: " + reason);
   }
 }
 

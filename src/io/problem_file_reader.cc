@@ -112,6 +112,27 @@ struct NodeTable {
   }
 };
 
+// A pair of nodes at the same place (within 1e-12 of the nodes' extent), or nothing: a node
+// written twice leaves the elements on either copy unconnected, with no word from the model.
+std::optional<std::pair<int, int>> CoincidentNodes(const Mat& xy) {
+  const Eigen::Index n = xy.rows();
+  if (n < 2) return std::nullopt;
+  const double extent = (xy.colwise().maxCoeff() - xy.colwise().minCoeff()).norm();
+  const double tolerance = 1e-12 * extent;
+  std::vector<int> by_x(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) by_x[static_cast<std::size_t>(k)] = k;
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return xy(a, 0) < xy(b, 0); });
+  for (std::size_t i = 0; i < by_x.size(); ++i) {
+    for (std::size_t j = i + 1; j < by_x.size() && xy(by_x[j], 0) - xy(by_x[i], 0) <= tolerance;
+         ++j) {
+      if ((xy.row(by_x[i]) - xy.row(by_x[j])).norm() <= tolerance) {
+        return std::make_pair(std::min(by_x[i], by_x[j]), std::max(by_x[i], by_x[j]));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 NodeTable ReadNodes(const JsonNode& nodes, int dim) {
   NodeTable t;
   const auto items = nodes.Items();
@@ -128,6 +149,11 @@ NodeTable ReadNodes(const JsonNode& nodes, int dim) {
     }
     t.ids.push_back(value);
     t.coordinates.row(static_cast<Eigen::Index>(k)) = items[k].Field("x").Vector(dim).transpose();
+  }
+  if (const auto pair = CoincidentNodes(t.coordinates)) {
+    items[static_cast<std::size_t>(pair->second)].Fail(
+        "node " + std::to_string(t.ids[pair->second]) + " is at the same place as node " +
+        std::to_string(t.ids[pair->first]) + " (/nodes/" + std::to_string(pair->first) + ")");
   }
   return t;
 }
@@ -450,6 +476,9 @@ Problem ReadTruss(const JsonNode& root, const std::string& file,
   return problem;
 }
 
+// The shortest side a Q4 element may have, relative to its longest.
+constexpr double kDegenerateEdgeRatio = 1e-8;
+
 // A Q4 element's corners must turn left at every corner: counter-clockwise and strictly convex
 // (then the bilinear map's Jacobian is positive everywhere in the element).
 std::string ElementProblem(const Mat& xy, const PlaneStressQ4::Element& e) {
@@ -463,6 +492,23 @@ std::string ElementProblem(const Mat& xy, const PlaneStressQ4::Element& e) {
     return "clockwise (signed area " + Describe(area) + "): list the nodes counter-clockwise";
   }
   if (!(area > 0.0)) return "zero area";
+  // An edge far shorter than the element's longest is a degenerate element: its Jacobian is
+  // positive in exact arithmetic but its stiffness is singular to working precision.
+  double longest = 0.0, shortest = 0.0;
+  int shortest_side = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double length = (xy.row(e[(k + 1) % 4]) - xy.row(e[k])).norm();
+    longest = std::max(longest, length);
+    if (k == 0 || length < shortest) {
+      shortest = length;
+      shortest_side = k;
+    }
+  }
+  if (!(shortest > kDegenerateEdgeRatio * longest)) {
+    return "degenerate: its side " + std::to_string(shortest_side) + " has length " +
+           Describe(shortest) + ", against " + Describe(longest) + " for its longest (below " +
+           Describe(kDegenerateEdgeRatio) + " of it)";
+  }
   for (int k = 0; k < 4; ++k) {
     const Eigen::RowVector2d in = xy.row(e[k]) - xy.row(e[(k + 3) % 4]);
     const Eigen::RowVector2d out = xy.row(e[(k + 1) % 4]) - xy.row(e[k]);
@@ -523,6 +569,10 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
       in.nodes.coordinates.row(row) = g.coordinates.block(row, 0, 1, 2);
       in.nodes.index[g.node_tags[k]] = static_cast<int>(k);
       in.nodes.ids.push_back(g.node_tags[k]);
+    }
+    if (const auto pair = CoincidentNodes(in.nodes.coordinates)) {
+      throw InputError(in.mesh_file, "node " + std::to_string(in.nodes.ids[pair->second]),
+                       "at the same place as node " + std::to_string(in.nodes.ids[pair->first]));
     }
     if (g.quads.empty()) {
       throw InputError(in.mesh_file, "", "no 4-node quadrangles (element type 3) in the mesh");

@@ -18,7 +18,8 @@ ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales&
       options_(options),
       observer_(observer != nullptr ? *observer : no_observer_),
       kink_locator_(model, scales, formulation, options),
-      critical_point_finder_(model, scales, formulation, options) {
+      critical_point_finder_(model, scales, formulation, options),
+      stagnation_(options.stagnation, options.arc_length, options.lambda_weight) {
   options.Validate();
 }
 
@@ -44,6 +45,10 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
     LocateKinksAndRedirect(*leg, &attempt);
     const std::vector<CriticalPointRecord> critical = DetectCriticalPoints(*leg, &attempt);
     Accept(attempt, critical);
+    if (auto why = stagnation_.Observe(step, attempt.arc_length,
+                                       {attempt.result.point.du, attempt.result.point.dlambda})) {
+      return Finish(Status::kFailed, *why);
+    }
     if (InterruptedByCaller()) {
       return Finish(Status::kStoppedByCaller,
                     "stopped by the caller after step " + std::to_string(step));
@@ -62,6 +67,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
 bool ArcLengthTracer::Start(const State& initial) {
   summary_ = PathSummary();
   summary_.final_state = initial;
+  stagnation_ = StagnationMonitor(options_.stagnation, options_.arc_length, options_.lambda_weight);
   at_ = Position();
   next_ = NextStep();
   at_.accepted.state = initial;

@@ -2,7 +2,7 @@
 // Run() is a sequence of named steps: choose how the step leaves its origin (a StepLeg: along
 // the branch, or off a bifurcation point), attempt it with cut-backs of the arc length, locate
 // the kinks within it and redirect the path past them, detect the critical points within it,
-// and accept it.
+// accept it, and stop the path when it stagnates (stagnation.h).
 #pragma once
 
 #include <any>
@@ -15,6 +15,7 @@
 #include "path/critical_points.h"
 #include "path/kink_location.h"
 #include "path/path.h"
+#include "path/stagnation.h"
 #include "path/step_leg.h"
 #include "path/step_origin.h"
 
@@ -73,6 +74,7 @@ class ArcLengthTracer {
   const CriticalPointFinder critical_point_finder_;
 
   PathSummary summary_;
+  StagnationMonitor stagnation_;
   Position at_;
   NextStep next_;
 };

@@ -33,7 +33,7 @@ bool PathOptions::IsValid(std::string* why) const {
     *why = "max_cutbacks must be >= 0";
     return false;
   }
-  return true;
+  return stagnation.IsValid(why);
 }
 
 void PathOptions::Validate() const {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "model/contact_model.h"
+#include "path/stagnation.h"
 #include "step/formulation.h"
 #include "verdict/verdict.h"
 
@@ -36,6 +37,9 @@ struct PathOptions {
   // kSwitch: the bifurcation point is bracketed by bisection of the arc length until the
   // bracket is below this fraction of theta.
   double bifurcation_tolerance = 1e-6;
+  // When an arc-length path that goes on being accepted stops making progress
+  // (stagnation.h): then it ends as kFailed.
+  StagnationOptions stagnation;
   SolveControls controls;  // per-step time limit and interrupt hook
 
   bool IsValid(std::string* why) const;

@@ -9,6 +9,17 @@ namespace cb {
 JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
                          const StartPoint& start, const PathOptions& options) {
   JudgedStep judged;
+  if (options.controls.interrupted && options.controls.interrupted()) {
+    // Asked to stop before the solve: do not start one (its setup, the first factorisation of
+    // a large model, can take seconds before the backend polls the hook).
+    judged.result.status = Status::kStoppedByCaller;
+    judged.result.message = "stopped by the caller before the solve";
+    judged.result.point.du = Vec::Zero(problem.model->num_dofs());
+    judged.result.point.g = GapsAt(*problem.model, problem.base.u);
+    judged.result.point.r = problem.base.r;
+    judged.state = problem.base;
+    return judged;
+  }
   judged.result = formulation.Solve(problem, start, options.controls);
   const StepPoint& point = judged.result.point;
   judged.verdict = Judge(problem, point, options.tolerance);

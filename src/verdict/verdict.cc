@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "model/complementarity_model.h"
+
 namespace cb {
 
 Verdict Judge(const StepProblem& step, const StepPoint& point, double tolerance) {
@@ -27,8 +29,13 @@ Verdict Judge(const StepProblem& step, const StepPoint& point, double tolerance)
   const Vec g = -phi;
 
   Verdict v;
-  v.eq_res = (d > 0 ? equilibrium.lpNorm<Eigen::Infinity>() : 0.0) /
-             std::max(1.0, d > 0 ? external.lpNorm<Eigen::Infinity>() : 0.0);
+  // A body's equilibrium is judged relative to its load; an LCP/NCP has no load (lambda f = 0)
+  // and its rows F(z) + r are reactions, judged relative to R like the reactions of (10)-(11):
+  // otherwise the verdict on an LCP would depend on the units of its data.
+  const bool complementarity = dynamic_cast<const ComplementarityModel*>(&model) != nullptr;
+  const double equilibrium_scale =
+      complementarity ? force : std::max(1.0, d > 0 ? external.lpNorm<Eigen::Infinity>() : 0.0);
+  v.eq_res = (d > 0 ? equilibrium.lpNorm<Eigen::Infinity>() : 0.0) / equilibrium_scale;
   v.comp_res = 0.0;
   v.feas_res = 0.0;
   for (int p = 0; p < nc; ++p) {

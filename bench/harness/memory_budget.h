@@ -1,0 +1,59 @@
+// The memory a run is allowed and the memory a problem needs, compared before the work starts
+// (docs/hardening.md, "Memory"): a problem that would run out of memory is refused at once with
+// the estimate (exit 2) instead of dying with std::bad_alloc after minutes of work; --allow-memory
+// runs it anyway. And what the run was doing when memory ran out, for the message of a
+// std::bad_alloc that gets through.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace cb::harness {
+
+// The memory of a run on a model of `dofs` unknowns and `pairs` contact pairs: the sparse
+// factorisations and the records grow with the unknowns, the dense contact block of the
+// condensed solver (contact_block_factor.h) with the square of the contact dofs.
+struct MemoryEstimate {
+  double dofs = 0.0;
+  double pairs = 0.0;
+  double contact_dofs = 0.0;  // the dofs the pairs act on (at most dofs)
+  double bytes() const;
+  std::string Describe() const;  // "2.1 GiB (181202 unknowns x 3.5 KiB + ...)"
+};
+// Bytes per unknown and per contact dof squared of MemoryEstimate::bytes() (measured on P1:
+// docs/hardening.md).
+constexpr double kBytesPerUnknown = 3.5 * 1024.0;
+constexpr double kBytesPerContactDofSquared = 4.0 * 8.0;
+constexpr double kBaseBytes = 64.0 * 1024.0 * 1024.0;
+
+// What the process may still take: the least of MemAvailable (/proc/meminfo), the memory
+// cgroup's limit less its usage, and RLIMIT_AS less the current virtual size. The variable
+// CONTACTBENCH_MEMORY_LIMIT (bytes) replaces them, for tests. Nothing when none is known.
+struct MemoryLimit {
+  double bytes = 0.0;
+  std::string source;  // "MemAvailable", "the cgroup limit", "RLIMIT_AS", ...
+};
+std::optional<MemoryLimit> AvailableMemory();
+
+// Throws UsageError naming the estimate and the limit when `estimate` exceeds what is available
+// (unless `allow`), `what` naming the problem.
+void CheckMemory(const MemoryEstimate& estimate, const std::string& what, bool allow);
+
+// What the run is doing, for "out of memory while <doing>": set for the extent of a scope.
+class Activity {
+ public:
+  explicit Activity(const char* doing);
+  ~Activity();
+  Activity(const Activity&) = delete;
+  Activity& operator=(const Activity&) = delete;
+  // "starting" outside every scope. A scope left by an exception keeps its activity, so that
+  // the handler of a std::bad_alloc still knows it.
+  static const char* Current();
+
+ private:
+  const char* previous_;
+  int exceptions_;
+};
+
+}  // namespace cb::harness
