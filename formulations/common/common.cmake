@@ -1,6 +1,7 @@
 # What every formulation may share: the settings (config), the step equations of the equation
 # formulations, and what the energy formulations ask of a step.
 target_sources(contactbench_formulations PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/captured_stderr.cc
   ${CMAKE_CURRENT_LIST_DIR}/config.cc
   ${CMAKE_CURRENT_LIST_DIR}/energy_step.cc
   ${CMAKE_CURRENT_LIST_DIR}/start_solvers.cc

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "formulations/common/captured_stderr.h"
 #include "formulations/siconos/siconos.h"
 
 namespace cb {
@@ -111,8 +112,10 @@ SiconosLcpOutcome RunSiconosLcp(SiconosLcpSolver solver, const SiconosLcpOptions
   SiconosLcpOutcome outcome;
   outcome.z = z0;
   outcome.w = Vec::Zero(q.size());
+  CapturedStderr library_output;
   outcome.info =
       linearComplementarity_driver(problem.get(), outcome.z.data(), outcome.w.data(), o.get());
+  outcome.library_output = library_output.Release();
   outcome.iterations = o->iparam[SICONOS_IPARAM_ITER_DONE];
   outcome.error = o->dparam[SICONOS_DPARAM_RESIDU];
   return outcome;
@@ -150,6 +153,9 @@ void RecordSiconosOutcome(SiconosLcpSolver solver, const SiconosLcpOutcome& outc
   std::ostringstream error;
   error << outcome.error;
   result->details["siconos_error"] = error.str();
+  if (!outcome.library_output.empty()) {
+    result->details["siconos_output"] = AbbreviateOutput(outcome.library_output);
+  }
   result->message = std::string("Siconos ") + SiconosLcpSolverName(solver) + ": " + meaning +
                     " (error " + error.str() + ")";
 }

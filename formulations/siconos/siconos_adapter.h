@@ -58,6 +58,7 @@ struct SiconosLcpOutcome {
   int iterations = 0;  // iparam[SICONOS_IPARAM_ITER_DONE]
   double error = 0.0;  // dparam[SICONOS_DPARAM_RESIDU]
   Vec z, w;
+  std::string library_output;  // what Siconos wrote to stderr during the run
 };
 
 // Solves w = M z + q, z >= 0, w >= 0, z^T w = 0 from z0 (used by the Newton solvers as their

@@ -1,0 +1,46 @@
+#include "formulations/common/captured_stderr.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+namespace cb {
+namespace {
+
+TEST(CapturedStderr, HoldsWhatBothStdioAndTheDescriptorWrite) {
+  CapturedStderr capture;
+  std::fprintf(stderr, "NM_LU_factorize: DGETRF failed\n");
+  const char raw[] = "written to descriptor 2\n";
+  ASSERT_EQ(write(STDERR_FILENO, raw, sizeof raw - 1), static_cast<ssize_t>(sizeof raw - 1));
+  EXPECT_EQ(capture.Release(), "NM_LU_factorize: DGETRF failed\nwritten to descriptor 2\n");
+}
+
+TEST(CapturedStderr, RestoresStandardErrorOnRelease) {
+  {
+    CapturedStderr first;
+    std::fprintf(stderr, "first\n");
+    EXPECT_EQ(first.Release(), "first\n");
+    EXPECT_EQ(first.Release(), "");  // a second release has nothing left
+  }
+  // Standard error is the original again: a new capture sees only what is written after it.
+  CapturedStderr second;
+  std::fprintf(stderr, "second\n");
+  EXPECT_EQ(second.Release(), "second\n");
+}
+
+TEST(AbbreviateOutput, KeepsShortTextAndCutsLongTextAtALineEnd) {
+  EXPECT_EQ(AbbreviateOutput("one line\n"), "one line");
+  std::string lines;
+  for (int i = 0; i < 100; ++i) lines += "line " + std::to_string(i) + "\n";
+  const std::string cut = AbbreviateOutput(lines, 40);
+  EXPECT_LE(cut.find(" ... ("), 40u);
+  EXPECT_EQ(cut.substr(0, 14), "line 0\nline 1\n");
+  // 40 characters hold "line 0".."line 4" and their newlines (35 characters): the other 95 of
+  // the 100 lines are left out.
+  EXPECT_EQ(cut, lines.substr(0, 34) + " ... (95 more lines)");
+}
+
+}  // namespace
+}  // namespace cb
