@@ -291,8 +291,8 @@ inline std::vector<Fixture> MakeFixtures() {
     f.problem = MakeProblem("block", {{"n", "10"}});
     f.base = ZeroState(*f.problem.model);
     f.constraint = StepConstraint::FixedLoad(f.problem.load);
-    const int n = 10;
-    f.check = [n](const State& s) -> ::testing::AssertionResult {
+    constexpr int n = 10;
+    f.check = [](const State& s) -> ::testing::AssertionResult {
       const double wall = s.r.head(n + 1).sum();
       const double floor = s.r.tail(n + 1).sum();
       if (std::abs(wall + 1e4) > 1e-4 || std::abs(floor + 1e4) > 1e-4) {
