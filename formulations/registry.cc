@@ -6,6 +6,7 @@
 #include "formulations/ipopt/ipopt.h"
 #include "formulations/nlopt/nlopt.h"
 #include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/petsc/petsc.h"
 
 namespace cb {
 
@@ -29,6 +30,10 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        NloptAvailable(), MakeNloptEnergy},
       {"nlopt-mpcc", "the step NLP in penalty form, NLopt LD_SLSQP", NloptAvailable(),
        MakeNloptMpcc},
+      {"petsc-rsls", "the step as an MCP, PETSc SNESVINEWTONRSLS (reduced-space active set)",
+       PetscAvailable(), MakePetscRsls},
+      {"petsc-ssls", "the step as an MCP, PETSc SNESVINEWTONSSLS (semismooth FB)", PetscAvailable(),
+       MakePetscSsls},
   };
   return registry;
 }
