@@ -52,7 +52,12 @@ Vec MakeMcpStart(const StepProblem& step, const StartPoint& start, const McpBoun
     x.segment(l.g(), l.nc).setZero();
     x.segment(l.r(), l.nc).setConstant(-1.0);
   }
-  return x.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+  x = x.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+  for (int p = 0; p < l.nc; ++p) {
+    const bool tie = x[l.g() + p] == bounds.lower[l.g() + p] && x[l.r() + p] == 0.0;
+    if (tie) x[l.r() + p] = -kTieReaction;  // see the header
+  }
+  return x;
 }
 
 double McpNaturalResidual(const Vec& x, const Vec& f, const McpBounds& bounds) {

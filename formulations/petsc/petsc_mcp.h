@@ -67,13 +67,19 @@ McpBounds MakeMcpBounds(const StepProblem& step);
 
 // The start in the MCP's unknowns, inside its bounds (SNESVI starts from a feasible point):
 //  warm: docs/method.md section 4, (38)-(41) (MakeStepEquationStart), g^0 = max(-phi(u0) / L, 0):
-//        (30) and the step constraint hold, except where the predictor penetrates;
+//        (30) and the step constraint hold, except where the predictor penetrates. A pair
+//        touching at u0 with no reaction yet (g^0 = 0, r^0 = 0: P1's pairs at the zero state) is
+//        a tie, and SNESVI counts a bounded unknown with F = 0 as free; it starts at
+//        r^0 = -kTieReaction instead, so that it starts closed, as the suite's active-set sends
+//        ties to the active set (docs/method.md section 8);
 //  cold: du0 = 0, dlambda0 fitted to the constraint, the report's g^0 = -1 projected onto the
 //        bound, g^0 = 0, and r^0 = -1 (the report's magnitude with a reaction's sign): every pair
 //        starts closed (F2_p = 1 + phi_p / L > 0 at its bound), so RSLS's first system is the
 //        fully closed one, as the suite's active-set starts; the fully open one is singular for
 //        a body held only by its contacts (P1).
 Vec MakeMcpStart(const StepProblem& step, const StartPoint& start, const McpBounds& bounds);
+// The verdict's tolerance: a reaction no verdict tells from zero.
+constexpr double kTieReaction = 1e-8;
 
 // The natural residual of the MCP, ||mid(x - l, F, x - u)||_inf (zero exactly at a solution):
 // the history's residual_inf.
