@@ -117,9 +117,11 @@ std::string SnesReasonName(SNESConvergedReason reason) {
 }
 
 std::string PetscViOptions(const std::string& snes_type, const std::string& user) {
+  // See the top of the header for the factorisation of each method.
+  const std::string factorisation = snes_type == SNESVINEWTONRSLS ? "umfpack" : "mumps";
   std::string options = "-snes_type " + snes_type +
-                        " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps"
-                        " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
+                        " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type " +
+                        factorisation + " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
   return user.empty() ? options : options + " " + user;
 }
 

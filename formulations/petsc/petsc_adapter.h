@@ -17,9 +17,14 @@
 // backend option `petsc_options`, the CLI's --petsc-options), so the user's settings win and
 // never reach another instance. The defaults, and why:
 //   -snes_type vinewtonrsls | vinewtonssls   the formulation;
-//   -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps
-//                        a direct solve, as every suite formulation has; MUMPS is the fastest of
-//                        the factorisations Debian's PETSc offers here (docs/backend-petsc.md);
+//   -ksp_type preonly -pc_type lu   a direct solve, as every suite formulation has;
+//   -pc_factor_mat_solver_type umfpack (RSLS) | mumps (SSLS)
+//                        the fastest of the factorisations Debian's PETSc offers (MUMPS,
+//                        UMFPACK, SuperLU, KLU; PETSc's own LU meets the zero pivots of the
+//                        complementarity rows) for each method (docs/backend-petsc.md): RSLS
+//                        factorises a new reduced matrix at every iteration, where UMFPACK's
+//                        analysis is the cheaper; SSLS keeps one pattern, whose MUMPS analysis
+//                        PETSc reuses;
 //   -snes_atol 1e-10 -snes_rtol 0
 //                        the equation formulations' residual_tol on the scaled rows, here on
 //                        the 2-norm SNESVI's test uses (of the inactive rows, RSLS; of the FB
