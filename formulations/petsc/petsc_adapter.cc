@@ -326,6 +326,7 @@ SnesVi::SnesVi(const std::string& snes_type, const std::string& user_options)
   Try(SNESSetOptionsPrefix(objects_->snes, prefix.c_str()), "SNESSetOptionsPrefix");
   const PetscErrorCode read = SNESSetFromOptions(objects_->snes);
   if (read != 0) {
+    SNESDestroy(&objects_->snes);  // the destructor does not run for a throwing constructor
     throw std::invalid_argument("petsc_options '" + user_options +
                                 "': " + PetscErrorText(read, "SNESSetFromOptions"));
   }
