@@ -1,6 +1,7 @@
 // The suite driver: see harness/cli.h.
 #include <csignal>
 
+#include "formulations/petsc/petsc.h"
 #include "harness/cli.h"
 #include "harness/interrupt.h"
 
@@ -10,5 +11,7 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) then fails the write that exceeds it, which the records
   // report (exit 3), instead of killing the process in the middle of a line.
   std::signal(SIGXFSZ, SIG_IGN);
+  // PETSc starts on first use, once per process; this scope finalises it (petsc.h).
+  const cb::PetscProcessScope petsc;
   return cb::harness::Main(argc, argv);
 }

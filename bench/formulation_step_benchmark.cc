@@ -30,7 +30,10 @@
 //
 // Counters: iterations (NLopt: objective evaluations), residual_evals, jacobian_evals,
 // linear_solves, the verdict's eq_res, comp_res, feas_res, step_res, n_contact of the answer,
-// step, lambda at the end of the step, d (degrees of freedom) and nc (contact pairs).
+// step, lambda at the end of the step, d (degrees of freedom) and nc (contact pairs), and
+// time_vs_implicit_fb: the mean time of a solve over implicit-fb's on the same step and start
+// measured earlier in the same run (registered first, as the registry lists it first), so that
+// peers are compared on one machine state (absent when implicit-fb was filtered out).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -56,6 +59,12 @@ namespace {
 constexpr double kTolerance = 1e-8;  // the verdict's, as in every run
 constexpr double kTimeLimitS = 5.0;  // per solve, as in scripts/run_compare.sh
 constexpr int kEarlyStep = 10;
+
+// implicit-fb's mean solve time per benchmark (problem/start/step), for time_vs_implicit_fb.
+std::map<std::string, double>& ImplicitFbTimes() {
+  static std::map<std::string, double> times;
+  return times;
+}
 
 // A problem's reference path, traced once.
 struct Reference {
@@ -123,6 +132,7 @@ bool Reversed(const Reference& ref, int k, const StepPoint& p) {
 
 void StepBenchmark(benchmark::State& state, const Reference* ref, const std::string& name,
                    StartKind start_kind, int k) {
+  const std::string key = ref->problem.name + "/" + ToString(start_kind) + "/" + std::to_string(k);
   try {
     auto formulation = MakeFormulation(name, FormulationConfig{});
     std::string why;
@@ -148,10 +158,13 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     const StartPoint start = ReplayStart(*ref, k, start_kind, warm_state);
     StepResult result;
     Verdict verdict;
+    double total_s = 0.0;
     for (auto _ : state) {
       Stopwatch clock;
       result = formulation->Solve(step, start, controls);
-      state.SetIterationTime(clock.Seconds());
+      const double seconds = clock.Seconds();
+      state.SetIterationTime(seconds);
+      total_s += seconds;
       // A pointer, not a double: GCC 12 mis-handles DoNotOptimize(double&) (google/benchmark#903).
       benchmark::DoNotOptimize(result.point.du.data());
       verdict = Judge(step, result.point, kTolerance);
@@ -177,6 +190,11 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     state.counters["lambda"] = step.base.lambda + result.point.dlambda;
     state.counters["d"] = step.num_dofs();
     state.counters["nc"] = step.num_pairs();
+    const double mean_s = total_s / static_cast<double>(state.iterations());
+    if (name == "implicit-fb") ImplicitFbTimes()[key] = mean_s;
+    if (auto it = ImplicitFbTimes().find(key); it != ImplicitFbTimes().end()) {
+      state.counters["time_vs_implicit_fb"] = mean_s / it->second;
+    }
   } catch (const std::exception& e) {
     state.SkipWithError((std::string("error: ") + e.what()).c_str());
   }

@@ -24,7 +24,10 @@
 // measured once: another time-budget choice).
 //
 // Counters: d, nc, iterations (NLopt: objective evaluations), residual_evals, jacobian_evals,
-// linear_solves, eq_res, comp_res of the verdict, peak_rss_mb, solve_mem_mb.
+// linear_solves, eq_res, comp_res of the verdict, peak_rss_mb, solve_mem_mb, and
+// time_vs_implicit_fb: the mean time of a solve over implicit-fb's at the same n measured earlier
+// in the same run (implicit-fb is registered first), so that peers are compared on one machine
+// state (absent when implicit-fb was filtered out).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -50,6 +53,12 @@ constexpr double kTolerance = 1e-8;
 // SLSQP takes ~20 s per iteration there).
 constexpr double kTimeLimitS = 300.0;
 constexpr double kNloptTimeLimitS = 20.0;
+
+// implicit-fb's mean solve time per mesh, for time_vs_implicit_fb.
+std::map<int, double>& ImplicitFbTimes() {
+  static std::map<int, double> times;
+  return times;
+}
 
 // The NLopt formulations: the shorter time limit, one measurement per mesh (time budget).
 bool IsNlopt(const std::string& name) { return name.rfind("nlopt", 0) == 0; }
@@ -105,12 +114,15 @@ void ColdSolve(benchmark::State& state, const std::string& name) {
     Verdict verdict;
     bench::PeakMemory memory;
     double peak_mb = 0.0, increase_mb = 0.0;
+    double total_s = 0.0;
     for (auto _ : state) {
       auto formulation = MakeFormulation(name, FormulationConfig{});
       memory.Start();
       Stopwatch clock;
       result = formulation->Solve(step, cold, controls);
-      state.SetIterationTime(clock.Seconds());
+      const double seconds = clock.Seconds();
+      state.SetIterationTime(seconds);
+      total_s += seconds;
       peak_mb = std::max(peak_mb, memory.PeakMb());
       increase_mb = std::max(increase_mb, memory.IncreaseMb());
       benchmark::DoNotOptimize(result.point.du.data());  // a pointer: google/benchmark#903
@@ -132,6 +144,11 @@ void ColdSolve(benchmark::State& state, const std::string& name) {
     state.counters["comp_res"] = verdict.comp_res;
     state.counters["peak_rss_mb"] = peak_mb;
     state.counters["solve_mem_mb"] = memory.reset() ? increase_mb : -1.0;
+    const double mean_s = total_s / static_cast<double>(state.iterations());
+    if (name == "implicit-fb") ImplicitFbTimes()[n] = mean_s;
+    if (auto it = ImplicitFbTimes().find(n); it != ImplicitFbTimes().end()) {
+      state.counters["time_vs_implicit_fb"] = mean_s / it->second;
+    }
   } catch (const std::exception& e) {
     state.SkipWithError((std::string("error: ") + e.what()).c_str());
   }

@@ -6,6 +6,7 @@
 #include "formulations/ipopt/ipopt.h"
 #include "formulations/nlopt/nlopt.h"
 #include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/petsc/petsc.h"
 #include "formulations/siconos/siconos.h"
 
 namespace cb {
@@ -36,6 +37,10 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        SiconosAvailable(), MakeSiconosNewtonFb},
       {"siconos-newton-min", "the same LCP, Siconos Newton on min(z, w) with FB line search",
        SiconosAvailable(), MakeSiconosNewtonMin},
+      {"petsc-rsls", "the step as an MCP, PETSc SNESVINEWTONRSLS (reduced-space active set)",
+       PetscAvailable(), MakePetscRsls},
+      {"petsc-ssls", "the step as an MCP, PETSc SNESVINEWTONSSLS (semismooth FB)", PetscAvailable(),
+       MakePetscSsls},
   };
   return registry;
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "formulations/petsc/petsc.h"
 #include "formulations/registry.h"
 #include "harness/interrupt.h"
 #include "harness/memory_budget.h"
@@ -38,6 +39,9 @@ FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
   for (const auto& owner : {std::string(), name}) {
     auto it = a.options.find(owner);
     if (it != a.options.end()) config.options.insert(it->second.begin(), it->second.end());
+  }
+  if (!a.petsc_options.empty() && TakesPetscOptions(name)) {
+    config.options["petsc_options"] = a.petsc_options;
   }
   return config;
 }
@@ -253,6 +257,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
 
 int Run(const RunArguments& a, RunJson* record) {
   Problem problem = LoadProblem(a);
+  if (!a.petsc_options.empty() && !TakesPetscOptions(a.formulation)) {
+    throw UsageError("--petsc-options: " + a.formulation + " is not a PETSc formulation");
+  }
   std::unique_ptr<Formulation> formulation;
   try {
     formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));

@@ -302,6 +302,10 @@ std::vector<Option> MakeOptions() {
       {"--option", "FORMULATION:KEY=VALUE", kCompare, Need::kOptional, true,
        "a setting of the formulation named", nullptr,
        [](O o, S v, A* a) { FormulationOption(o, v, true, a); }},
+      {"--petsc-options", "OPTIONS", kPathCommands, Need::kOptional, false,
+       "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
+       "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"",
+       nullptr, [](O, S v, A* a) { a->petsc_options = v; }},
       {"--help", "", kAll, Need::kOptional, false, "print this command's options and exit", nullptr,
        [](O, S, A* a) { a->help = true; }},
   };

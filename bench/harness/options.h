@@ -54,6 +54,7 @@ struct RunArguments {
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
   std::map<std::string, std::map<std::string, std::string>> options;
+  std::string petsc_options;  // --petsc-options: the PETSc formulations' options string
   std::optional<int> steps;
   std::optional<double> arc_length;
   StartKind start = StartKind::kWarm;

@@ -1,0 +1,410 @@
+#include "formulations/petsc/petsc_adapter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+
+#include "core/timer.h"
+#include "formulations/petsc/petsc.h"
+
+namespace cb {
+
+bool PetscAvailable() { return true; }
+
+// --- the process ------------------------------------------------------------------------------
+
+namespace {
+
+bool started_here = false;  // PetscInitialize was ours, so PetscFinalize is too
+
+void FinalizePetsc() {
+  PetscBool initialized = PETSC_FALSE, finalized = PETSC_FALSE;
+  PetscInitialized(&initialized);
+  PetscFinalized(&finalized);
+  if (started_here && initialized && !finalized) PetscFinalize();
+}
+
+bool PetscGone() {
+  PetscBool finalized = PETSC_FALSE;
+  PetscFinalized(&finalized);
+  return finalized;
+}
+
+// The message of the error being raised (its first report), instead of PETSc's printout.
+std::string last_error;
+
+PetscErrorCode RecordPetscError(MPI_Comm, int, const char* function, const char*,
+                                PetscErrorCode code, PetscErrorType type, const char* message,
+                                void*) {
+  if (type == PETSC_ERROR_INITIAL || last_error.empty()) {
+    const char* text = nullptr;
+    if (message == nullptr || *message == '\0') PetscErrorMessage(code, &text, nullptr);
+    last_error = std::string(function != nullptr ? function : "PETSc") + "(): " +
+                 (text != nullptr      ? text
+                  : message != nullptr ? message
+                                       : "");
+  }
+  return code;
+}
+
+// PETSc's errors recorded, not printed, while it lives.
+class PetscErrorCapture {
+ public:
+  PetscErrorCapture() {
+    last_error.clear();
+    PetscPushErrorHandler(RecordPetscError, nullptr);
+  }
+  ~PetscErrorCapture() { PetscPopErrorHandler(); }
+  PetscErrorCapture(const PetscErrorCapture&) = delete;
+  PetscErrorCapture& operator=(const PetscErrorCapture&) = delete;
+};
+
+std::string PetscErrorText(PetscErrorCode code, const char* call) {
+  std::string text = std::string("PETSc ") + call + " failed (error " + std::to_string(code) + ")";
+  return last_error.empty() ? text : text + ": " + last_error;
+}
+
+void Try(PetscErrorCode code, const char* call) {
+  if (code != 0) throw std::runtime_error(PetscErrorText(code, call));
+}
+
+}  // namespace
+
+void StartPetsc() {
+  PetscBool initialized = PETSC_FALSE;
+  PetscInitialized(&initialized);
+  if (initialized) return;
+  static char name[] = "contactbench", no_signals[] = "-no_signal_handler",
+              no_rc[] = "-skip_petscrc";
+  static char* arguments[] = {name, no_signals, no_rc, nullptr};
+  int argc = 3;
+  char** argv = arguments;
+  const PetscErrorCode code = PetscInitialize(&argc, &argv, nullptr, nullptr);
+  if (code != 0) {
+    throw std::runtime_error("PETSc: PetscInitialize failed (error " + std::to_string(code) + ")");
+  }
+  started_here = true;
+  std::atexit(FinalizePetsc);  // a host without a PetscProcessScope
+}
+
+PetscProcessScope::~PetscProcessScope() { FinalizePetsc(); }
+
+// --- reasons -----------------------------------------------------------------------------------
+
+Status MapSnesReason(SNESConvergedReason reason) {
+  switch (reason) {
+    case SNES_CONVERGED_FNORM_ABS:
+    case SNES_CONVERGED_FNORM_RELATIVE:
+    case SNES_CONVERGED_SNORM_RELATIVE:
+      return Status::kConverged;
+    case SNES_CONVERGED_ITS:  // the iteration limit with SNESConvergedSkip
+    case SNES_DIVERGED_MAX_IT:
+    case SNES_DIVERGED_FUNCTION_COUNT:
+      return Status::kLimitReached;
+    case SNES_CONVERGED_ITERATING:
+      return Status::kNotRun;
+    default:
+      return Status::kFailed;
+  }
+}
+
+std::string SnesReasonName(SNESConvergedReason reason) {
+  return reason >= SNES_DIVERGED_TR_DELTA && reason <= SNES_CONVERGED_ITS
+             ? SNESConvergedReasons[reason]
+             : "reason " + std::to_string(static_cast<int>(reason));
+}
+
+std::string PetscViOptions(const std::string& snes_type, const std::string& user) {
+  // See the top of the header for the factorisation of each method.
+  const std::string factorisation = snes_type == SNESVINEWTONRSLS ? "umfpack" : "mumps";
+  std::string options = "-snes_type " + snes_type +
+                        " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type " +
+                        factorisation + " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
+  return user.empty() ? options : options + " " + user;
+}
+
+// --- one SNESVI --------------------------------------------------------------------------------
+
+namespace {
+
+// What the callbacks of one Solve share.
+struct SnesViRun {
+  SnesViRun(McpStepEquations& s, const McpBounds& b, const McpRowMap& r, const SolveControls& c,
+            StepResult& out)
+      : system(s), bounds(b), rows(r), controls(c), result(out) {}
+  McpStepEquations& system;
+  const McpBounds& bounds;
+  const McpRowMap& rows;
+  const SolveControls& controls;
+  StepResult& result;
+  Stopwatch clock;
+  Vec x, f;
+  SpMat jacobian;
+  int jacobian_evals = 0;
+  double initial_norm = 0.0;
+  bool stopped = false;
+  bool timed_out = false;
+  std::exception_ptr error;
+};
+
+void CopyIn(::Vec from, Vec* to) {
+  const PetscScalar* a = nullptr;
+  PetscInt n = 0;
+  VecGetLocalSize(from, &n);
+  VecGetArrayRead(from, &a);
+  *to = Eigen::Map<const Vec>(a, n);
+  VecRestoreArrayRead(from, &a);
+}
+
+void CopyOut(const Vec& from, ::Vec to) {
+  PetscScalar* a = nullptr;
+  VecGetArrayWrite(to, &a);
+  std::copy_n(from.data(), from.size(), a);
+  VecRestoreArrayWrite(to, &a);
+}
+
+// The bounds with PETSc's markers of "no bound" (SNESVI compares against them exactly).
+void CopyBound(const Vec& bound, ::Vec to) {
+  Vec marked = bound;
+  for (Eigen::Index i = 0; i < marked.size(); ++i) {
+    if (std::isinf(marked[i])) marked[i] = marked[i] > 0 ? PETSC_INFINITY : PETSC_NINFINITY;
+  }
+  CopyOut(marked, to);
+}
+
+// Runs `body` for a callback; an exception is kept for Solve to rethrow and stops SNESSolve.
+template <typename Body>
+PetscErrorCode Guard(SnesViRun* run, Body&& body) {
+  if (run->error) return PETSC_ERR_USER;
+  try {
+    body();
+    return 0;
+  } catch (...) {
+    run->error = std::current_exception();
+    return PETSC_ERR_USER;
+  }
+}
+
+// F of petsc_mcp.h; a non-finite value is a domain error (the line search then cuts back).
+PetscErrorCode EvaluateMcp(SNES snes, ::Vec x, ::Vec f, void* context) {
+  auto* run = static_cast<SnesViRun*>(context);
+  return Guard(run, [&] {
+    CopyIn(x, &run->x);
+    const bool finite = McpFunction(run->system, run->x, &run->f);
+    CopyOut(run->f, f);
+    if (!finite) SNESSetFunctionDomainError(snes);
+  });
+}
+
+// The MCP Jacobian: the step equations' Jacobian, combined and written into the AIJ storage
+// through the row map (petsc_mcp.h).
+PetscErrorCode EvaluateJacobian(SNES, ::Vec x, ::Mat, ::Mat jacobian, void* context) {
+  auto* run = static_cast<SnesViRun*>(context);
+  return Guard(run, [&] {
+    CopyIn(x, &run->x);
+    run->system.Jacobian(run->x, &run->jacobian);
+    if (!SamePattern(run->rows, run->jacobian)) {
+      throw std::logic_error("the MCP Jacobian's pattern changed within a solve");
+    }
+    PetscScalar* values = nullptr;
+    Try(MatSeqAIJGetArrayWrite(jacobian, &values), "MatSeqAIJGetArrayWrite");
+    FillMcpValues(run->rows, run->jacobian, values);
+    Try(MatSeqAIJRestoreArrayWrite(jacobian, &values), "MatSeqAIJRestoreArrayWrite");
+    ++run->jacobian_evals;
+  });
+}
+
+// History: merit 1/2 fnorm^2 of SNESVI's norm, residual_inf the MCP's natural residual,
+// comp_res of the scaled pairs, step_length the line search's lambda.
+PetscErrorCode RecordIteration(SNES snes, PetscInt iteration, PetscReal fnorm, void* context) {
+  auto* run = static_cast<SnesViRun*>(context);
+  return Guard(run, [&] {
+    ::Vec x = nullptr, f = nullptr;
+    Try(SNESGetSolution(snes, &x), "SNESGetSolution");
+    Try(SNESGetFunction(snes, &f, nullptr, nullptr), "SNESGetFunction");
+    CopyIn(x, &run->x);
+    CopyIn(f, &run->f);
+    SNESLineSearch line_search = nullptr;
+    PetscReal step = 0.0;
+    if (iteration > 0 && SNESGetLineSearch(snes, &line_search) == 0) {
+      SNESLineSearchGetLambda(line_search, &step);
+    }
+    IterationRecord record;
+    record.iteration = static_cast<int>(iteration);
+    record.merit = 0.5 * fnorm * fnorm;
+    record.residual_inf = McpNaturalResidual(run->x, run->f, run->bounds);
+    record.comp_res = ComplementarityResidual(run->system.layout(), run->x);
+    record.step_length = step;
+    run->result.history.push_back(record);
+  });
+}
+
+// SNESVI's default test (SNESConvergedDefault_VI, internal to PETSc): NaN, ||F|| < atol, the
+// function-evaluation limit, ||F|| < rtol ||F_0||; then the controls.
+PetscErrorCode SnesViConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscReal,
+                                     PetscReal fnorm, SNESConvergedReason* reason, void* context) {
+  auto* run = static_cast<SnesViRun*>(context);
+  PetscReal atol = 0.0, rtol = 0.0;
+  PetscInt max_funcs = 0, funcs = 0;
+  PetscErrorCode code = SNESGetTolerances(snes, &atol, &rtol, nullptr, nullptr, &max_funcs);
+  if (code == 0) code = SNESGetNumberFunctionEvals(snes, &funcs);
+  if (code != 0) return code;
+  if (iteration == 0) run->initial_norm = fnorm;
+  *reason = SNES_CONVERGED_ITERATING;
+  if (std::isnan(fnorm)) {
+    *reason = SNES_DIVERGED_FNORM_NAN;
+  } else if (fnorm < atol) {
+    *reason = SNES_CONVERGED_FNORM_ABS;
+  } else if (max_funcs >= 0 && funcs >= max_funcs) {
+    *reason = SNES_DIVERGED_FUNCTION_COUNT;
+  } else if (iteration > 0 && fnorm < rtol * run->initial_norm) {
+    *reason = SNES_CONVERGED_FNORM_RELATIVE;
+  }
+  if (*reason != SNES_CONVERGED_ITERATING) return 0;
+  return Guard(run, [&] {
+    run->timed_out =
+        run->controls.time_limit_s > 0.0 && run->clock.Seconds() > run->controls.time_limit_s;
+    if (run->timed_out || (run->controls.interrupted && run->controls.interrupted())) {
+      run->stopped = true;
+      *reason = SNES_DIVERGED_FUNCTION_COUNT;  // any divergence stops SNESSolve; see `stopped`
+    }
+  });
+}
+
+}  // namespace
+
+struct SnesVi::Objects {
+  SNES snes = nullptr;
+  ::Mat jacobian = nullptr;
+  ::Vec x = nullptr, f = nullptr, lower = nullptr, upper = nullptr;
+  McpRowMap rows;
+  SnesViRun* run = nullptr;  // the Solve in progress (the callbacks' context)
+
+  void DestroyOperands() {
+    MatDestroy(&jacobian);
+    VecDestroy(&x);
+    VecDestroy(&f);
+    VecDestroy(&lower);
+    VecDestroy(&upper);
+  }
+
+  // Vectors of size n and the AIJ matrix with `pattern`, preallocated exactly.
+  void Make(const StepEquationLayout& layout, const SpMat& pattern) {
+    DestroyOperands();
+    rows = MakeMcpRowMap(layout, pattern);
+    const PetscInt n = rows.size;
+    Try(SNESReset(snes), "SNESReset");
+    Try(VecCreateSeq(PETSC_COMM_SELF, n, &x), "VecCreateSeq");
+    Try(VecDuplicate(x, &f), "VecDuplicate");
+    Try(VecDuplicate(x, &lower), "VecDuplicate");
+    Try(VecDuplicate(x, &upper), "VecDuplicate");
+    Try(MatCreate(PETSC_COMM_SELF, &jacobian), "MatCreate");
+    Try(MatSetSizes(jacobian, n, n, n, n), "MatSetSizes");
+    Try(MatSetType(jacobian, MATSEQAIJ), "MatSetType");
+    Try(MatSeqAIJSetPreallocationCSR(jacobian, rows.row_start.data(), rows.columns.data(), nullptr),
+        "MatSeqAIJSetPreallocationCSR");
+    Try(MatSetOption(jacobian, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  }
+};
+
+SnesVi::SnesVi(const std::string& snes_type, const std::string& user_options)
+    : options_(PetscViOptions(snes_type, user_options)), objects_(std::make_unique<Objects>()) {
+  StartPetsc();
+  PetscErrorCapture capture;
+  static int instances = 0;
+  const std::string prefix = "cb" + std::to_string(++instances) + "_";
+  Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
+  const PetscErrorCode inserted = PetscOptionsInsertString(nullptr, options_.c_str());
+  Try(PetscOptionsPrefixPop(nullptr), "PetscOptionsPrefixPop");
+  if (inserted != 0) {
+    throw std::invalid_argument("petsc_options '" + user_options +
+                                "': " + PetscErrorText(inserted, "PetscOptionsInsertString"));
+  }
+  Try(SNESCreate(PETSC_COMM_SELF, &objects_->snes), "SNESCreate");
+  Try(SNESSetOptionsPrefix(objects_->snes, prefix.c_str()), "SNESSetOptionsPrefix");
+  const PetscErrorCode read = SNESSetFromOptions(objects_->snes);
+  if (read != 0) {
+    SNESDestroy(&objects_->snes);  // the destructor does not run for a throwing constructor
+    throw std::invalid_argument("petsc_options '" + user_options +
+                                "': " + PetscErrorText(read, "SNESSetFromOptions"));
+  }
+  // After SNESSetFromOptions, so that a user's -snes_monitor stays and ours come last.
+  Objects* objects = objects_.get();
+  auto context = [](Objects* o) { return static_cast<void*>(o); };
+  Try(SNESMonitorSet(
+          objects->snes,
+          [](SNES s, PetscInt i, PetscReal n, void* c) {
+            return RecordIteration(s, i, n, static_cast<Objects*>(c)->run);
+          },
+          context(objects), nullptr),
+      "SNESMonitorSet");
+  Try(SNESSetConvergenceTest(
+          objects->snes,
+          [](SNES s, PetscInt i, PetscReal xn, PetscReal sn, PetscReal fn, SNESConvergedReason* r,
+             void* c) {
+            return SnesViConvergenceTest(s, i, xn, sn, fn, r, static_cast<Objects*>(c)->run);
+          },
+          context(objects), nullptr),
+      "SNESSetConvergenceTest");
+}
+
+SnesVi::~SnesVi() {
+  if (PetscGone()) return;  // PETSc finalised first (at exit): nothing left to free
+  objects_->DestroyOperands();
+  SNESDestroy(&objects_->snes);
+}
+
+void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const SolveControls& controls,
+                   Vec* x, StepResult* result) {
+  PetscErrorCapture capture;
+  Objects& o = *objects_;
+  SnesViRun run(system, bounds, o.rows, controls, *result);
+  // The pattern at the start: the operands are remade only when it is not the last one.
+  system.Jacobian(*x, &run.jacobian);
+  if (o.x == nullptr || !SamePattern(o.rows, run.jacobian)) o.Make(system.layout(), run.jacobian);
+  CopyBound(bounds.lower, o.lower);
+  CopyBound(bounds.upper, o.upper);
+  CopyOut(*x, o.x);
+  o.run = &run;
+  auto solve = [&]() -> PetscErrorCode {
+    PetscErrorCode code = SNESSetFunction(o.snes, o.f, EvaluateMcp, &run);
+    if (code == 0) code = SNESSetJacobian(o.snes, o.jacobian, o.jacobian, EvaluateJacobian, &run);
+    if (code == 0) code = SNESVISetVariableBounds(o.snes, o.lower, o.upper);
+    if (code == 0) code = SNESSolve(o.snes, nullptr, o.x);
+    return code;
+  };
+  const PetscErrorCode code = solve();
+  o.run = nullptr;
+  if (run.error) std::rethrow_exception(run.error);
+  CopyIn(o.x, x);
+
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PetscInt iterations = 0, funcs = 0, linear = 0;
+  SNESGetConvergedReason(o.snes, &reason);
+  SNESGetIterationNumber(o.snes, &iterations);
+  SNESGetNumberFunctionEvals(o.snes, &funcs);
+  SNESGetLinearSolveIterations(o.snes, &linear);
+  result->counts = {static_cast<int>(iterations), static_cast<int>(funcs), run.jacobian_evals,
+                    static_cast<int>(linear)};
+  result->details["petsc_reason"] =
+      std::to_string(static_cast<int>(reason)) + " " + SnesReasonName(reason);
+  result->details["petsc_options"] = options_;
+  result->status = MapSnesReason(reason);
+  result->message = "PETSc SNESVI: " + SnesReasonName(reason);
+  if (code != 0) {
+    // A PETSc failure inside the solve (e.g. the factorisation): the step fails with it, and
+    // the operands are remade on the next solve.
+    result->status = Status::kFailed;
+    result->message = PetscErrorText(code, "SNESSolve");
+    o.DestroyOperands();
+  } else if (run.stopped) {
+    result->status = run.timed_out ? Status::kTimeLimit : Status::kStoppedByCaller;
+    result->message = run.timed_out ? TimeLimitMessage(controls.time_limit_s)
+                                    : std::string("PETSc SNESVI: stopped by the caller");
+    result->message += " at iteration " + std::to_string(iterations);
+  }
+}
+
+}  // namespace cb

@@ -1,0 +1,21 @@
+// What the registry finds when PETSc was not found at configure time (petsc.cmake builds this
+// file instead of the adapter and the formulations).
+#include <stdexcept>
+
+#include "formulations/petsc/petsc.h"
+
+namespace cb {
+
+bool PetscAvailable() { return false; }
+
+std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig&) {
+  throw std::invalid_argument("petsc-rsls: this build has no PETSc");
+}
+
+std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig&) {
+  throw std::invalid_argument("petsc-ssls: this build has no PETSc");
+}
+
+PetscProcessScope::~PetscProcessScope() = default;
+
+}  // namespace cb

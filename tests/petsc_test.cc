@@ -1,0 +1,197 @@
+// The PETSc backend (formulations/petsc/): closed-form solves by both SNESVI methods, the options
+// database as the interface (defaults recorded, the user's options applied over them, a value
+// PETSc refuses refused with its message), the status of SNESConvergedReason, the controls, an
+// exception thrown in a callback, and the CLI (a short path, --petsc-options). Skipped when this
+// build has no PETSc; the MCP itself is checked in every build (petsc_mcp_test.cc), the shared
+// fixtures in formulations_test.cc.
+#include "formulations/petsc/petsc.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "fixtures.h"
+#include "formulations/registry.h"
+#include "path/path.h"
+#include "problems/problem.h"
+#include "verdict/verdict.h"
+
+namespace cb {
+namespace {
+
+class PetscTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (!PetscAvailable()) GTEST_SKIP() << "this build has no PETSc";
+  }
+};
+
+std::unique_ptr<Formulation> Make(const std::string& name, const std::string& petsc_options = "") {
+  FormulationConfig config;
+  if (!petsc_options.empty()) config.options["petsc_options"] = petsc_options;
+  return MakeFormulation(name, config);
+}
+
+StartPoint Cold(const StepProblem& step) {
+  StartPoint start;
+  start.kind = StartKind::kCold;
+  start.du = Vec::Zero(step.num_dofs());
+  start.r = Vec::Zero(step.num_pairs());
+  return start;
+}
+
+// P1 at n = 10: the fixed-load solve whose cold start takes several iterations.
+struct Block {
+  Problem problem = MakeProblem("block", {{"n", "10"}});
+  StepProblem step{problem.model.get(), ZeroState(*problem.model),
+                   StepConstraint::FixedLoad(problem.load), problem.scales};
+};
+
+TEST_P(PetscTest, SolvesTheBarAgainstTheWallToItsClosedForm) {
+  const fixtures::Fixture& f = fixtures::FindFixture("bar_wall");
+  const StepProblem step = f.Step();
+  auto formulation = Make(GetParam());
+  const StepResult r = formulation->Solve(step, Cold(step));
+  EXPECT_EQ(r.status, Status::kConverged) << r.message;
+  EXPECT_TRUE(Judge(step, r.point, 1e-10).verified);
+  const State s{step.base.u + r.point.du, r.point.r, step.base.lambda + r.point.dlambda};
+  EXPECT_TRUE(f.check(s));
+  EXPECT_GT(r.counts.iterations, 0);
+  EXPECT_GE(r.counts.residual_evals, r.counts.iterations);
+  EXPECT_EQ(r.counts.jacobian_evals, r.counts.iterations);
+  EXPECT_EQ(r.counts.linear_solves, r.counts.iterations);  // preonly: one per Newton step
+  EXPECT_EQ(r.history.size(), static_cast<std::size_t>(r.counts.iterations) + 1);
+  EXPECT_EQ(r.details.at("petsc_reason"), "2 CONVERGED_FNORM_ABS");
+}
+
+TEST_P(PetscTest, RecordsItsDefaultsAndAppliesTheUsersOptionsOverThem) {
+  auto plain = Make(GetParam());
+  const std::string type = GetParam() == "petsc-rsls" ? "vinewtonrsls" : "vinewtonssls";
+  EXPECT_NE(plain->settings().find("-snes_type " + type), std::string::npos) << plain->settings();
+  const std::string factorisation = GetParam() == "petsc-rsls" ? "umfpack" : "mumps";
+  EXPECT_NE(plain->settings().find("-pc_factor_mat_solver_type " + factorisation),
+            std::string::npos);
+  // One Newton step cannot solve P1 from the cold start: the iteration limit, as PETSc says.
+  Block b;
+  auto limited = Make(GetParam(), "-snes_max_it 1");
+  EXPECT_NE(limited->settings().find("-snes_max_it 1"), std::string::npos);
+  const StepResult r = limited->Solve(b.step, Cold(b.step));
+  EXPECT_EQ(r.status, Status::kLimitReached) << r.message;
+  EXPECT_EQ(r.counts.iterations, 1);
+  EXPECT_EQ(r.details.at("petsc_reason"), "-5 DIVERGED_MAX_IT");
+  EXPECT_NE(r.message.find("DIVERGED_MAX_IT"), std::string::npos) << r.message;
+  // ... and the defaults again for an instance made without them.
+  EXPECT_EQ(Make(GetParam())->Solve(b.step, Cold(b.step)).status, Status::kConverged);
+}
+
+TEST_P(PetscTest, RefusesWhatPetscRefusesAndUnknownKeys) {
+  try {
+    Make(GetParam(), "-snes_max_it many");
+    FAIL() << "a bad value was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("petsc_options '-snes_max_it many'"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("many"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Make(GetParam(), "-snes_type no_such_method"), std::invalid_argument);
+  FormulationConfig config;
+  config.options["max_it"] = "3";
+  EXPECT_THROW(MakeFormulation(GetParam(), config), std::invalid_argument);
+}
+
+TEST_P(PetscTest, HonoursTheInterruptAndTheTimeLimit) {
+  Block b;
+  auto formulation = Make(GetParam());
+  SolveControls stop;
+  stop.interrupted = [] { return true; };
+  StepResult r = formulation->Solve(b.step, Cold(b.step), stop);
+  EXPECT_EQ(r.status, Status::kStoppedByCaller) << r.message;
+  EXPECT_EQ(r.counts.iterations, 0);
+  SolveControls clock;
+  clock.time_limit_s = 1e-12;
+  r = formulation->Solve(b.step, Cold(b.step), clock);
+  EXPECT_EQ(r.status, Status::kTimeLimit) << r.message;
+  EXPECT_NE(r.message.find(TimeLimitMessage(1e-12)), std::string::npos) << r.message;
+  // The same instance solves the step afterwards.
+  EXPECT_EQ(formulation->Solve(b.step, Cold(b.step)).status, Status::kConverged);
+}
+
+TEST_P(PetscTest, AnExceptionInACallbackComesOutOfSolve) {
+  Block b;
+  auto formulation = Make(GetParam());
+  SolveControls throwing;
+  throwing.interrupted = []() -> bool { throw std::runtime_error("from the callback"); };
+  try {
+    formulation->Solve(b.step, Cold(b.step), throwing);
+    FAIL() << "the exception was lost";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "from the callback");
+  }
+  EXPECT_EQ(formulation->Solve(b.step, Cold(b.step)).status, Status::kConverged);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, PetscTest, ::testing::Values("petsc-rsls", "petsc-ssls"),
+                         [](const auto& info) {
+                           return info.param == "petsc-rsls" ? "rsls" : "ssls";
+                         });
+
+// --- the CLI ----------------------------------------------------------------------------------
+
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+Outcome RunCli(const std::string& arguments) {
+  Outcome out;
+  FILE* pipe = popen((std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out.output += buffer;
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+std::string TempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("contactbench_petsc_" + name);
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+TEST(PetscCliTest, TracesAShortPathAndPassesItsOptionsThrough) {
+  if (!PetscAvailable()) GTEST_SKIP() << "this build has no PETSc";
+  const std::string dir = TempDir("path");
+  Outcome o = RunCli("run --problem two-bar-obstacle --formulation petsc-rsls --steps 8 --out " +
+                     dir + " --petsc-options \"-snes_max_it 50\"");
+  EXPECT_EQ(o.status, 0) << o.output;
+  std::ifstream steps(dir + "/steps.csv");
+  std::string header, first;
+  std::getline(steps, header);
+  std::getline(steps, first);
+  EXPECT_NE(first.find("-snes_max_it 50"), std::string::npos) << first;  // settings column
+  // A value PETSc refuses: status 2, with PETSc's reason.
+  o = RunCli("run --problem two-bar-obstacle --formulation petsc-ssls --out " + TempDir("bad") +
+             " --petsc-options \"-snes_max_it many\"");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("-snes_max_it many"), std::string::npos) << o.output;
+  // PETSc options for a formulation that has none.
+  o = RunCli("run --problem two-bar-obstacle --formulation implicit-fb --out " + TempDir("other") +
+             " --petsc-options \"-snes_max_it 5\"");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("not a PETSc formulation"), std::string::npos) << o.output;
+  // -snes_max_it 1 makes P1's cold solve fail, as PETSc reports it.
+  const std::string p1 = TempDir("p1");
+  o = RunCli("run --problem block --set n=4 --start cold --formulation petsc-rsls --out " + p1 +
+             " --petsc-options \"-snes_max_it 1\"");
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find("DIVERGED_MAX_IT"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace cb
