@@ -1,5 +1,7 @@
 #include "harness/cli.h"
 
+#include <contactbench_build_info.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "formulations/registry.h"
+#include "harness/compare_table.h"
 #include "harness/interrupt.h"
 #include "harness/options.h"
 #include "harness/output_directory.h"
@@ -18,6 +21,7 @@
 #include "harness/records_doc.h"
 #include "harness/run_json.h"
 #include "harness/snapshots.h"
+#include "harness/suggest.h"
 #include "io/problem_file.h"
 #include "path/near_start.h"
 #include "path/path.h"
@@ -100,14 +104,14 @@ int List() {
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw UsageError("--out: cannot create the directory '" + dir + "': " + ec.message());
+  if (ec) throw InputError("--out: cannot create the directory '" + dir + "': " + ec.message());
   if (!std::filesystem::is_directory(dir, ec)) {
-    throw UsageError("--out: '" + dir + "' exists and is not a directory");
+    throw InputError("--out: '" + dir + "' exists and is not a directory");
   }
   const std::string probe = dir + "/.contactbench_write_test";
   {
     std::ofstream f(probe);
-    if (!f) throw UsageError("--out: the directory '" + dir + "' is not writable");
+    if (!f) throw InputError("--out: the directory '" + dir + "' is not writable");
   }
   std::filesystem::remove(probe, ec);
 }
@@ -119,7 +123,7 @@ Problem LoadProblem(const RunArguments& a) {
     if (!a.problem_file.empty()) return io::LoadProblemFile(a.problem_file, a.settings);
     return MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    throw InputError(e.what());
   }
 }
 
@@ -157,6 +161,27 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   return status;
 }
 
+// What the summary line of a run counts: for a fixed-load solve (P1, an LCP) the iterations and
+// the time it took, for a path its steps and what was found along it.
+std::string SummaryCounts(const Problem& problem, const PathSummary& summary,
+                          const RunRecorder& recorder) {
+  char text[256];
+  if (problem.loading == LoadingKind::kFixedLoad) {
+    int iterations = 0;
+    for (int n : recorder.iterations()) iterations += n;
+    double time_s = 0.0;
+    for (double t : recorder.solve_times_s()) time_s += t;
+    std::snprintf(text, sizeof text, "%d iterations, %.3g s", iterations, time_s);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "%d accepted steps, %d attempts, %d kinks, %d limit points, "
+                  "%d bifurcation points, %d branch switches",
+                  summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
+                  summary.bifurcations, summary.branch_switches);
+  }
+  return text;
+}
+
 // The run itself, in its claimed output directory.
 int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
              const PathOptions& options, RunJson* record, std::string* reason) {
@@ -190,12 +215,10 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   record->accepted_steps = summary.accepted_steps;
   record->kinks = summary.kinks;
   *reason = summary.message;
-  std::fprintf(stderr,
-               "%s %s: %s (%d accepted steps, %d attempts, %d kinks, %d limit points, "
-               "%d bifurcation points, %d branch switches) -> %s\n",
-               problem.name.c_str(), formulation.name().c_str(), summary.message.c_str(),
-               summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
-               summary.bifurcations, summary.branch_switches, a.out.c_str());
+  recorder.EndProgress();
+  std::fprintf(stderr, "%s %s: %s (%s) -> %s\n", problem.name.c_str(), formulation.name().c_str(),
+               summary.message.c_str(), SummaryCounts(problem, summary, recorder).c_str(),
+               a.out.c_str());
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   if (summary.status != Status::kConverged) return kExitFailure;
   return kExitOk;
@@ -212,7 +235,7 @@ int Run(const RunArguments& a, RunJson* record) {
   const PathOptions options = MakePathOptions(a, problem);
   std::string refusal;
   if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
-    throw UsageError(refusal + " (problem '" + problem.name + "')");
+    throw InputError(refusal + " (problem '" + problem.name + "')");
   }
   if (a.start_near && problem.loading != LoadingKind::kFixedLoad) {
     throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
@@ -265,6 +288,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
 
+  std::vector<CompareTableRow> table;
   for (const auto& formulation : formulations) {
     for (StartKind start : a.starts) {
       const RunLabel label{problem.name,          formulation->name(),
@@ -274,6 +298,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       if (!formulation->Accepts(first, &why)) {
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
         runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
+        table.push_back({formulation->name(), ToString(start), "skipped", {}, {}});
         continue;
       }
       RunRecorder recorder(&files, problem, label,
@@ -285,8 +310,13 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
                              : Trace(problem, *formulation, run_options, &recorder);
+      recorder.EndProgress();
       runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
                   a.time_limit, a.tolerance});
+      table.push_back(
+          {formulation->name(), ToString(start),
+           std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
+           recorder.iterations(), recorder.solve_times_s()});
       ++record->runs;
       record->attempts += recorder.attempts();
       record->accepted_steps += recorder.accepted();
@@ -297,7 +327,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
   *reason = "every formulation was run (runs.csv holds each one's outcome)";
-  std::fprintf(stderr, "compare: records in %s\n", a.out.c_str());
+  std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(table).c_str(), a.out.c_str());
   return kExitOk;
 }
 
@@ -330,19 +360,19 @@ int Export(const RunArguments& a) {
   try {
     text = io::ProblemToJson(problem);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    throw InputError(e.what());
   }
   const std::filesystem::path out(a.out);
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec)) {
-    throw UsageError("--out: '" + a.out + "' is a directory; give the problem file's name");
+    throw InputError("--out: '" + a.out + "' is a directory; give the problem file's name");
   }
   const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
   PrepareOutput(dir.string());
   std::ofstream file(out, std::ios::binary);
   file << text;
   file.close();
-  if (!file) throw UsageError("--out: cannot write '" + a.out + "'");
+  if (!file) throw InputError("--out: cannot write '" + a.out + "'");
   std::fprintf(stderr, "%s -> %s\n", problem.name.c_str(), a.out.c_str());
   return kExitOk;
 }
@@ -369,10 +399,19 @@ int Execute(Command command, const RunArguments& a, RunJson* record) {
   return kExitBadArguments;
 }
 
-std::string CommandNames() {
-  std::string names;
-  for (const CommandInfo& c : Commands()) names += std::string(c.name) + ", ";
-  return names + "help";
+std::vector<std::string> CommandNames() {
+  std::vector<std::string> names;
+  for (const CommandInfo& c : Commands()) names.emplace_back(c.name);
+  names.emplace_back("help");
+  return names;
+}
+
+// `contactbench --version`: the version and the commit of the build (as run.json records them).
+int Version() {
+  const std::string commit = CONTACTBENCH_COMMIT;
+  std::cout << "contactbench " << CONTACTBENCH_VERSION
+            << (commit.empty() ? " (commit unknown)" : " (commit " + commit + ")") << "\n";
+  return kExitOk;
 }
 
 }  // namespace
@@ -381,13 +420,19 @@ int Main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   const CommandInfo* command = nullptr;
   try {
-    if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-      std::cout << UsageText();
-      return args.empty() ? kExitBadArguments : kExitOk;
+    if (args.empty()) {  // an argument error: the usage goes to standard error
+      std::cerr << UsageText();
+      return kExitBadArguments;
     }
+    if (args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+      std::cout << UsageText();
+      return kExitOk;
+    }
+    if (args[0] == "--version") return Version();
     command = FindCommand(args[0]);
     if (command == nullptr) {
-      throw UsageError("unknown command '" + args[0] + "' (valid: " + CommandNames() + ")");
+      throw UsageError("unknown command '" + args[0] + "'" + DidYouMean(args[0], CommandNames()) +
+                       " (valid: " + Join(CommandNames()) + ")");
     }
     const RunArguments a =
         ParseArguments(command->command, std::vector<std::string>(args.begin() + 1, args.end()));
@@ -399,10 +444,13 @@ int Main(int argc, char** argv) {
     record.command_line.assign(argv, argv + argc);
     record.command = command->name;
     return Execute(command->command, a, &record);
+  } catch (const InputError& e) {
+    std::cerr << "contactbench: " << e.what() << "\n";
+    return kExitBadArguments;
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n";
     if (command == nullptr) {
-      std::cerr << UsageText();
+      std::cerr << "`contactbench help` shows the usage of every command.\n";
     } else {
       std::cerr << Synopsis(*command) << "`contactbench " << command->name
                 << " --help` describes the options.\n";

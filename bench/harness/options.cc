@@ -8,6 +8,7 @@
 
 #include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/registry.h"
+#include "harness/suggest.h"
 #include "problems/problem.h"
 #include "solvers/linear_solver.h"
 
@@ -87,7 +88,8 @@ std::vector<std::string> SplitList(const std::string& text) {
 const std::string& Choice(const Option& option, const std::string& value) {
   const std::vector<std::string> valid = option.choices();
   if (!Contains(valid, value))
-    Refuse(option, "unknown '" + value + "' (valid: " + Join(valid) + ")");
+    Refuse(option,
+           "unknown '" + value + "'" + DidYouMean(value, valid) + " (valid: " + Join(valid) + ")");
   return value;
 }
 
@@ -109,7 +111,8 @@ void FormulationOption(const Option& option, const std::string& text, bool prefi
   }
   const std::string owner = prefixed ? text.substr(0, colon) : "";
   if (prefixed && !Contains(FormulationNames(), owner)) {
-    Refuse(option, "unknown formulation '" + owner + "' (valid: " + Join(FormulationNames()) + ")");
+    Refuse(option, "unknown formulation '" + owner + "'" + DidYouMean(owner, FormulationNames()) +
+                       " (valid: " + Join(FormulationNames()) + ")");
   }
   const auto [key, value] = KeyValue(option, prefixed ? text.substr(colon + 1) : text);
   a->options[owner][key] = value;
@@ -437,8 +440,9 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     const std::string& name = args[i];
     const Option* o = FindOption(name, command);
     if (o == nullptr) {
-      throw UsageError(std::string(command_name) + ": unknown option '" + name +
-                       "' (valid: " + Join(OptionNames(command)) + ")");
+      throw UsageError(std::string(command_name) + ": unknown option '" + name + "'" +
+                       DidYouMean(name, OptionNames(command)) +
+                       " (valid: " + Join(OptionNames(command)) + ")");
     }
     const bool repeated = !given.insert(name).second;
     if (repeated && !o->repeatable) throw UsageError(name + " is given twice");
@@ -457,7 +461,7 @@ std::string Synopsis(const CommandInfo& command) { return UsageLine(command, "us
 std::string UsageText() {
   std::string text = "usage:\n";
   for (const CommandInfo& c : Commands()) text += UsageLine(c, "  ");
-  text += "  contactbench help\n\n";
+  text += "  contactbench help\n  contactbench --version\n\n";
   text += Fill(Words("`contactbench COMMAND --help` says what a command does and what each of "
                      "its options means."),
                0, 0) +

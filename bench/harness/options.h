@@ -14,9 +14,15 @@
 
 namespace cb::harness {
 
-// A usage error: reported with exit status 2.
+// A usage error: reported with exit status 2 and the command's usage.
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+// Bad input that is no mistake in the form of the command line (a bad problem file, a problem
+// the formulation refuses, an output directory that cannot be used): exit status 2 as well,
+// but reported by its message alone, since the usage would not help.
+struct InputError : UsageError {
+  using UsageError::UsageError;
 };
 
 // The subcommands, as bits of a set.

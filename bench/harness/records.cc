@@ -1,7 +1,5 @@
 #include "harness/records.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "model/complementarity_model.h"
@@ -16,26 +14,26 @@ RecordFiles::RecordFiles(const std::string& directory)
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
-    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {
-  progress_ = isatty(STDERR_FILENO) == 1;
-}
+    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {}
 
 void RunRecorder::OnAttempt(const StepAttempt& a) {
   ++attempts_;
   if (!a.accepted) all_verified_ = false;
   if (a.accepted) ++accepted_;
+  iterations_.push_back(a.result.counts.iterations);
+  solve_times_s_.push_back(a.result.time_s);
   files_->steps().Write({label_, problem_, a});
   for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
-  if (progress_) ShowProgress(a);
+  ShowProgress(a);
 }
 
-void RunRecorder::ShowProgress(const StepAttempt& a) const {
-  std::fprintf(stderr, "\r%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d   ",
-               label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
-               total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
-               a.result.counts.iterations);
-  if (a.step == total_steps_ && (a.accepted || label_.mode != "run")) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
+void RunRecorder::ShowProgress(const StepAttempt& a) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d",
+                label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
+                total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
+                a.result.counts.iterations);
+  progress_.Update(text, accepted_, total_steps_);
 }
 
 void RunRecorder::OnKink(const KinkRecord& k) { files_->kinks().Write({label_, problem_, k}); }

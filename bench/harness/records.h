@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "harness/progress.h"
 #include "harness/record_schemas.h"
 #include "path/path.h"
 #include "problems/problem.h"
@@ -45,9 +46,15 @@ class RunRecorder final : public PathObserver {
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }
   int accepted() const { return accepted_; }
+  int total_steps() const { return total_steps_; }
+  // Per attempt, in order: the solver's iterations and the solve's wall time.
+  const std::vector<int>& iterations() const { return iterations_; }
+  const std::vector<double>& solve_times_s() const { return solve_times_s_; }
+  // Ends the progress line, so that a message after the run starts a line of its own.
+  void EndProgress() { progress_.End(); }
 
  private:
-  void ShowProgress(const StepAttempt& attempt) const;
+  void ShowProgress(const StepAttempt& attempt);
 
   RecordFiles* files_;
   const Problem& problem_;
@@ -56,7 +63,9 @@ class RunRecorder final : public PathObserver {
   int attempts_ = 0;
   int accepted_ = 0;
   int total_steps_ = 0;
-  bool progress_ = false;  // on a terminal only
+  std::vector<int> iterations_;
+  std::vector<double> solve_times_s_;
+  ProgressLine progress_;  // on a terminal only
 };
 
 // The rows of a body's state (step `step`, saved as `label`): one per node, one per pair.
