@@ -527,7 +527,7 @@ TEST(CliTest, BlockRunsTheFixedLoadSolve) {
   ASSERT_EQ(o.status, 0) << o.output;
   const auto steps = Lines(dir / "steps.csv");
   ASSERT_EQ(steps.size(), 2u);
-  EXPECT_NE(steps[1].find(",cold,1,1,"), std::string::npos) << steps[1];
+  EXPECT_NE(steps[1].find(",cold,1,1.0,"), std::string::npos) << steps[1];
 }
 
 }  // namespace
@@ -566,7 +566,7 @@ TEST(CliTest, SavedStatesAreWrittenAsCsvAndVtk) {
   EXPECT_EQ(line, "step,label,lambda,node,x,y,ux,uy");
   while (std::getline(csv, line)) {
     ++rows;
-    if (line.rfind("20,step,", 0) == 0 && line.find(",1,0,0.5,") != std::string::npos) {
+    if (line.rfind("20,step,", 0) == 0 && line.find(",1,0.0,0.5,") != std::string::npos) {
       uy = std::stod(line.substr(line.rfind(',') + 1));
     }
   }

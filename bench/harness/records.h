@@ -6,6 +6,7 @@
 // record_schemas.h; docs/records.md describes them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,10 +69,16 @@ class RunRecorder final : public PathObserver {
   ProgressLine progress_;  // on a terminal only
 };
 
-// The rows of a body's state (step `step`, saved as `label`): one per node, one per pair.
-std::vector<NodeRow> NodeRows(const BodyContactModel& model, const State& state, int step,
+// The id the records give node `node` and obstacle `obstacle` of a body problem: the problem
+// file's (Problem::node_ids, obstacle_ids), else the 0-based index.
+std::int64_t NodeId(const Problem& problem, int node);
+std::string ObstacleId(const Problem& problem, int obstacle);
+
+// The rows of a body problem's state (step `step`, saved as `label`): one per node, one per
+// pair.
+std::vector<NodeRow> NodeRows(const Problem& problem, const State& state, int step,
                               std::string_view label);
-std::vector<PairRow> PairRows(const BodyContactModel& model, const State& state, int step,
+std::vector<PairRow> PairRows(const Problem& problem, const State& state, int step,
                               std::string_view label);
 
 // The final state (the last accepted one, reached at step `step`): DIR/solution.csv and

@@ -66,7 +66,7 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
   const std::vector<std::vector<int>> all = problem_.body->body().Cells();
   for (std::size_t c = 0; c < all.size(); ++c) {
     for (std::size_t k = 0; k < all[c].size(); ++k) {
-      cells.Write({static_cast<int>(c), static_cast<int>(k), all[c][k]});
+      cells.Write({static_cast<int>(c), static_cast<int>(k), NodeId(problem_, all[c][k])});
     }
   }
 }
@@ -82,8 +82,8 @@ void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
 
 void SnapshotWriter::Save(const State& state, int step, const std::string& label) {
   if (!problem_.body) return;
-  for (const NodeRow& row : NodeRows(*problem_.body, state, step, label)) nodes_->Write(row);
-  for (const PairRow& row : PairRows(*problem_.body, state, step, label)) contacts_->Write(row);
+  for (const NodeRow& row : NodeRows(problem_, state, step, label)) nodes_->Write(row);
+  for (const PairRow& row : PairRows(problem_, state, step, label)) contacts_->Write(row);
   char name[64];
   std::snprintf(name, sizeof name, "_%04d.vtu", static_cast<int>(saved_.size()));
   const std::string file = problem_.name + name;
