@@ -84,6 +84,14 @@ class PlotRun(unittest.TestCase):
         np.testing.assert_allclose(segments[0][0], [moved.loc[first, "x"] + moved.loc[first, "ux"],
                                                     moved.loc[first, "y"] + moved.loc[first, "uy"]])
 
+    def test_the_obstacles_are_read_from_the_runs_vtk_files(self):
+        # The wall: the half-plane x > 1.01, drawn as one line on x = 1.01.
+        obstacles = run_plots.read_obstacles(self.run_dir)
+        self.assertEqual(len(obstacles), 1)
+        name, points, lines = obstacles[0]
+        self.assertEqual(lines, [[0, 1]])
+        np.testing.assert_allclose(points[:, 0], [1.01, 1.01])
+
     def test_not_a_run_directory_is_refused(self):
         with self.assertRaises(ValueError):
             run_plots.read_run(self.tmp)
