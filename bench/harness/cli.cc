@@ -27,6 +27,7 @@
 #include "path/path.h"
 #include "path/replay.h"
 #include "problems/problem.h"
+#include "problems/problem_path.h"
 #include "solvers/linear_solver.h"
 
 namespace cb::harness {
@@ -43,10 +44,11 @@ FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
   return config;
 }
 
+// The library's defaults for the problem (problem_path.h), changed by the options given.
 PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
-  PathOptions options;
-  options.arc_length = a.arc_length.value_or(problem.arc_length);
-  options.max_steps = a.steps.value_or(problem.steps);
+  PathOptions options = DefaultPathOptions(problem);
+  if (a.arc_length) options.arc_length = *a.arc_length;
+  if (a.steps) options.max_steps = *a.steps;
   options.tolerance = a.tolerance;
   options.start = a.start;
   options.max_cutbacks = a.max_cutbacks;
@@ -55,28 +57,6 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.controls.time_limit_s = a.time_limit;
   options.controls.interrupted = [] { return InterruptRequested(); };
   return options;
-}
-
-// The problem's first step, as Trace takes it: what a formulation is asked to Accept before the
-// problem is run (capability depends on the model and the kind of step, not on the path).
-StepProblem FirstStep(const Problem& problem, const PathOptions& options) {
-  const StepConstraint constraint =
-      problem.loading == LoadingKind::kFixedLoad
-          ? StepConstraint::FixedLoad(problem.load)
-          : StepConstraint::ArcLength(options.arc_length, options.lambda_weight);
-  return {problem.model.get(), ZeroState(*problem.model), constraint, problem.scales};
-}
-
-// Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
-PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
-                  PathObserver* observer, const State* guess = nullptr) {
-  const State initial = ZeroState(*problem.model);
-  if (problem.loading == LoadingKind::kFixedLoad) {
-    return SolveFixedLoad(*problem.model, problem.scales, initial, problem.load, formulation,
-                          options, observer, guess);
-  }
-  return TraceArcLengthPath(*problem.model, problem.scales, initial, formulation, options,
-                            observer);
 }
 
 int List() {
@@ -207,7 +187,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   SnapshotWriter snapshots(a.out, problem, a.save_every);
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary =
-      Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
+      TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
   WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
   snapshots.Save(summary.final_state, summary.accepted_steps, "final");
   record->runs = 1;
@@ -279,7 +259,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     } tee;
     tee.path = &path;
     tee.kinks = &kinks_only;
-    const PathSummary s = Trace(problem, *reference, options, &tee);
+    const PathSummary s = TraceProblem(problem, *reference, options, &tee);
     std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
     if (path.steps.empty()) {
       *reason = "the reference path has no verified step to replay (" + s.message + ")";
@@ -309,7 +289,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       const PathSummary s =
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
-                             : Trace(problem, *formulation, run_options, &recorder);
+                             : TraceProblem(problem, *formulation, run_options, &recorder);
       recorder.EndProgress();
       runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
                   a.time_limit, a.tolerance});

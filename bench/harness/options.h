@@ -11,6 +11,7 @@
 
 #include "formulations/common/config.h"
 #include "path/path.h"
+#include "problems/problem_path.h"
 
 namespace cb::harness {
 
@@ -64,10 +65,12 @@ struct RunArguments {
   StartKind start = StartKind::kWarm;
   bool start_near = false;  // run --start near: a warm start near a reference solution
   double near_offset = 1e-2;
-  double tolerance = 1e-8;
-  int max_cutbacks = 6;
-  bool locate_kinks = true;
-  BifurcationMode bifurcations = BifurcationMode::kDetect;
+  // The library's defaults (problem_path.h), so that a run without options traces as a
+  // program using DefaultPathOptions does.
+  double tolerance = PathOptions().tolerance;
+  int max_cutbacks = PathOptions().max_cutbacks;
+  bool locate_kinks = PathOptions().locate_kinks;
+  BifurcationMode bifurcations = kDefaultBifurcationMode;
   int save_every = 0;
   double time_limit = 0.0;
   std::map<std::string, std::string> settings;
