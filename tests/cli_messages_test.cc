@@ -147,6 +147,29 @@ TEST(CliMessagesTest, CompareEndsWithATableOfEachFormulationAndStart) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CliMessagesTest, PlotRunsThePlotScriptOnARunsDirectory) {
+  const auto dir = TempDir("plot");
+  ASSERT_EQ(RunCli("run --problem-file " + (kExamples / "truss-2d-bar-wall.json").string() +
+                   " --formulation implicit-fb --out " + dir.string())
+                .status,
+            0);
+  const auto figures = dir / "figures-of-step-14";
+  const Outcome o = RunCli("plot " + dir.string() + " --step 14 --figures " + figures.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  for (const char* figure : {"path.png", "deformed.png", "cost.png", "residual.png"}) {
+    EXPECT_GT(std::filesystem::file_size(figures / figure), 10000u) << figure << "\n" << o.output;
+  }
+  // No directory: an argument error; a directory without records: the script's message.
+  const Outcome missing = RunCli("plot");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("OUT_DIR is required"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("usage: contactbench plot OUT_DIR"), std::string::npos);
+  const Outcome empty = RunCli("plot " + (dir / "vtk").string());
+  EXPECT_EQ(empty.status, 2);
+  EXPECT_NE(empty.output.find("no steps.csv"), std::string::npos) << empty.output;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CompareTableTest, MediansOfOddAndEvenCounts) {
   using cb::harness::Median;
   EXPECT_EQ(Median({3.0, 1.0, 2.0}), 2.0);

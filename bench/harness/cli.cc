@@ -17,6 +17,7 @@
 #include "harness/interrupt.h"
 #include "harness/options.h"
 #include "harness/output_directory.h"
+#include "harness/plot_command.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
 #include "harness/run_json.h"
@@ -375,6 +376,8 @@ int Execute(Command command, const RunArguments& a, RunJson* record) {
       return Export(a);
     case kSchema:
       return Schema();
+    case kPlot:
+      return RunPlotScript(a);
   }
   return kExitBadArguments;
 }

@@ -129,7 +129,7 @@ std::vector<std::string> BifurcationModes() { return {"off", "detect", "switch"}
 
 // --- the table -------------------------------------------------------------------------------
 
-constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema;
+constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema | kPlot;
 constexpr unsigned kProblemCommands = kRun | kCompare | kExport;
 constexpr unsigned kPathCommands = kRun | kCompare;
 
@@ -248,6 +248,16 @@ std::vector<Option> MakeOptions() {
       {"--option", "FORMULATION:KEY=VALUE", kCompare, Need::kOptional, true,
        "a setting of the formulation named", nullptr,
        [](O o, S v, A* a) { FormulationOption(o, v, true, a); }},
+      {"--step", "N", kPlot, Need::kOptional, false,
+       "the step whose residual history is drawn (default: the one with the most iterations)",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->plot_step = ParseInteger(o, v);
+         if (*a->plot_step <= 0) Refuse(o, "must be a positive integer");
+       }},
+      {"--figures", "DIR", kPlot, Need::kOptional, false,
+       "where the figures go (default OUT_DIR/figures)", nullptr,
+       [](O, S v, A* a) { a->figures = v; }},
       {"--help", "", kAll, Need::kOptional, false, "print this command's options and exit", nullptr,
        [](O, S, A* a) { a->help = true; }},
   };
@@ -350,6 +360,9 @@ std::vector<std::string> UsageItems(Command command) {
     if (o.need == Need::kOptional) optional.push_back("[" + item + "]");
   }
   std::vector<std::string> items;
+  for (const CommandInfo& c : Commands()) {
+    if (c.command == command && c.operand != nullptr) items.emplace_back(c.operand);
+  }
   if (problem.size() == 1) items.push_back(problem.front());
   if (problem.size() > 1)
     items.push_back(std::string("(").append(Join(problem, " | ")).append(")"));
@@ -413,6 +426,13 @@ const std::vector<CommandInfo>& Commands() {
        "(docs/problem-files.md)."},
       {kSchema, "schema",
        "Prints the columns of every record file as markdown (the tables of docs/records.md)."},
+      {kPlot, "plot",
+       "Draws the figures of a run's or comparison's records (results/plot_run.py, with "
+       "Debian's python3-matplotlib and python3-pandas): the path with its kinks and critical "
+       "points, the deformed shapes with the obstacles, the iterations and time per step, a "
+       "step's residual history and, for a comparison, the performance profiles and iteration "
+       "histograms.",
+       "OUT_DIR", "the --out directory of `contactbench run` or `contactbench compare`"},
   };
   return commands;
 }
@@ -434,10 +454,19 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
   for (const CommandInfo& c : Commands()) {
     if (c.command == command) command_name = c.name;
   }
+  const CommandInfo* info = nullptr;
+  for (const CommandInfo& c : Commands()) {
+    if (c.command == command) info = &c;
+  }
   RunArguments a;
   std::set<std::string> given;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& name = args[i];
+    if (info->operand != nullptr && name.rfind("-", 0) != 0) {
+      if (!a.operand.empty()) throw UsageError(std::string(info->operand) + " is given twice");
+      a.operand = name;
+      continue;
+    }
     const Option* o = FindOption(name, command);
     if (o == nullptr) {
       throw UsageError(std::string(command_name) + ": unknown option '" + name + "'" +
@@ -452,6 +481,9 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     if (a.help) return a;
   }
   CheckNeeds(command, given);
+  if (info->operand != nullptr && a.operand.empty()) {
+    throw UsageError(std::string(info->operand) + " is required");
+  }
   if (command == kCompare) ApplyCompareDefaults(&a);
   return a;
 }
@@ -471,8 +503,14 @@ std::string UsageText() {
 
 std::string CommandHelp(const CommandInfo& command) {
   std::string text = Synopsis(command) + "\n";
-  text += Fill(Words(std::string(command.summary)), 0, 0) + "\n\noptions:\n";
+  text += Fill(Words(std::string(command.summary)), 0, 0) + "\n\n";
   constexpr std::size_t kHelpColumn = 30;
+  if (command.operand != nullptr) {
+    std::string line = std::string("  ") + command.operand;
+    line.resize(kHelpColumn, ' ');
+    text += line + Fill(Words(command.operand_help), kHelpColumn, kHelpColumn) + "\n\n";
+  }
+  text += "options:\n";
   for (const Option& o : Options()) {
     if (!Takes(o, command.command)) continue;
     std::string line = "  " + NameAndValue(o);

@@ -33,12 +33,16 @@ enum Command : unsigned {
   kCompare = 1u << 2,
   kExport = 1u << 3,
   kSchema = 1u << 4,
+  kPlot = 1u << 5,
 };
 
 struct CommandInfo {
   Command command;
   const char* name;
   const char* summary;  // what it does (plain text, wrapped when printed)
+  // The one argument that is not an option ("OUT_DIR"), required; nullptr: none.
+  const char* operand = nullptr;
+  const char* operand_help = nullptr;
 };
 // In the order of the usage text.
 const std::vector<CommandInfo>& Commands();
@@ -74,6 +78,9 @@ struct RunArguments {
   int save_every = 0;
   double time_limit = 0.0;
   std::map<std::string, std::string> settings;
+  std::string operand;           // the command's operand (plot: the run's directory)
+  std::optional<int> plot_step;  // plot --step
+  std::string figures;           // plot --figures
 };
 
 // Whether a command needs an option.
