@@ -450,19 +450,17 @@ const std::vector<Option>& Options() {
 }
 
 RunArguments ParseArguments(Command command, const std::vector<std::string>& args) {
-  const char* command_name = "";
-  for (const CommandInfo& c : Commands()) {
-    if (c.command == command) command_name = c.name;
-  }
   const CommandInfo* info = nullptr;
   for (const CommandInfo& c : Commands()) {
     if (c.command == command) info = &c;
   }
+  if (info == nullptr) throw std::logic_error("ParseArguments: a command without CommandInfo");
+  const char* command_name = info->name;
   RunArguments a;
   std::set<std::string> given;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& name = args[i];
-    if (info->operand != nullptr && name.rfind("-", 0) != 0) {
+    if (info->operand != nullptr && (name.empty() || name[0] != '-')) {
       if (!a.operand.empty()) throw UsageError(std::string(info->operand) + " is given twice");
       a.operand = name;
       continue;

@@ -37,6 +37,7 @@ int RunPlotScript(const RunArguments& a) {
   if (a.plot_step) args.insert(args.end(), {"--step", std::to_string(*a.plot_step)});
   if (!a.figures.empty()) args.insert(args.end(), {"--figures", a.figures});
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
   const pid_t pid = fork();

@@ -32,6 +32,7 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
 void SnapshotWriter::WriteObstacles() {
   const ElasticBody& body = problem_.body->body();
   std::vector<Point> reference;
+  reference.reserve(body.num_nodes());
   for (int n = 0; n < body.num_nodes(); ++n) reference.push_back(body.reference(n));
   const Box around = BoxAround(reference);
   const auto& obstacles = problem_.body->obstacles();
