@@ -15,8 +15,11 @@
 #include <vector>
 
 #include "core/csv.h"
+#include "run_example.h"
 
 namespace {
+
+using cb::test_support::RunExample;
 
 using cb::FormatReal;
 
@@ -40,9 +43,6 @@ TEST(FormatRealTest, EveryTextReadsBackToTheSameValue) {
   }
 }
 
-const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
-
 // The rows of a CSV file without quoted fields, by column name.
 std::vector<std::map<std::string, std::string>> ReadCsv(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -63,23 +63,9 @@ std::vector<std::map<std::string, std::string>> ReadCsv(const std::filesystem::p
   return rows;
 }
 
-// The records of `contactbench run` of an example with implicit-fb (and `more` options), in a
-// fresh directory of the given name.
-std::filesystem::path RunExample(const std::string& example, const std::string& name,
-                                 const std::string& more = "") {
-  const auto dir = std::filesystem::temp_directory_path() / ("contactbench_records_" + name);
-  std::filesystem::remove_all(dir);
-  const std::string command = std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
-                              (kExamples / example).string() + " --formulation implicit-fb " +
-                              more + " --out " + dir.string() + " 2>/dev/null";
-  const int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command;
-  return dir;
-}
-
 TEST(RecordsFormatTest, AProblemFilesNodesAndObstaclesKeepTheirIds) {
   // bar-wall: nodes 1, 2, 3 (node 3 against the obstacle "wall").
-  const auto dir = RunExample("truss-2d-bar-wall.json", "ids", "--save-every 20");
+  const auto dir = RunExample("truss-2d-bar-wall.json", "records_ids", "--save-every 20");
   std::set<std::string> nodes;
   for (const auto& row : ReadCsv(dir / "solution.csv")) nodes.insert(row.at("node"));
   EXPECT_EQ(nodes, (std::set<std::string>{"1", "2", "3"}));
@@ -98,7 +84,7 @@ TEST(RecordsFormatTest, AProblemFilesNodesAndObstaclesKeepTheirIds) {
 }
 
 TEST(RecordsFormatTest, AGmshMeshsNodesKeepTheirTags) {
-  const auto dir = RunExample("q4-block-gmsh.json", "tags");
+  const auto dir = RunExample("q4-block-gmsh.json", "records_tags");
   std::set<std::string> nodes;
   for (const auto& row : ReadCsv(dir / "solution.csv")) nodes.insert(row.at("node"));
   // The mesh's node tags are 1-6.
@@ -110,7 +96,7 @@ TEST(RecordsFormatTest, AGmshMeshsNodesKeepTheirTags) {
 TEST(RecordsFormatTest, ColumnsOfDoublesReadAsRealsEvenWhenIntegral) {
   // A fixed-load LCP: lambda, control_disp, feas_res, step_res and w are exactly 0, and the
   // scales 2 and 6, each of which was written as an integer.
-  const auto dir = RunExample("lcp-dense-2x2.json", "reals");
+  const auto dir = RunExample("lcp-dense-2x2.json", "records_reals");
   const auto rows = ReadCsv(dir / "steps.csv");
   ASSERT_EQ(rows.size(), 1u);
   for (const char* column : {"lambda", "control_disp", "time_s", "eq_res", "comp_res",

@@ -15,11 +15,12 @@
 
 #include "harness/obstacle_geometry.h"
 #include "model/obstacle.h"
+#include "run_example.h"
 
 namespace {
 
-const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+using cb::test_support::kExamples;
+using cb::test_support::RunExample;
 
 std::string Contents(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -46,22 +47,10 @@ std::string Element(const std::string& xml, const std::string& tag) {
                                                                 : xml.substr(begin, end - begin);
 }
 
-std::filesystem::path RunExample(const std::string& example, const std::string& name,
-                                 const std::string& more = "") {
-  const auto dir = std::filesystem::temp_directory_path() / ("contactbench_vtk_" + name);
-  std::filesystem::remove_all(dir);
-  const std::string command = std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
-                              (kExamples / example).string() + " --formulation implicit-fb " +
-                              more + " --out " + dir.string() + " 2>/dev/null";
-  const int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command;
-  return dir;
-}
-
 TEST(VtkFilesTest, Q4StressIsTheUniformUniaxialStressOfTheBlockOnTheFloor) {
   // A pressure p = 10 on the top of a block on a frictionless floor: sigma_yy = -p, the other
   // components 0, von Mises p, in every element (Q4 passes the patch test).
-  const auto dir = RunExample("q4-block-on-floor.json", "q4");
+  const auto dir = RunExample("q4-block-on-floor.json", "vtk_q4");
   const std::string grid = Contents(dir / "vtk" / "q4-block-on-floor_0000.vtu");
   const std::string cell_data = Element(grid, "CellData");
   ASSERT_FALSE(cell_data.empty()) << grid;
@@ -78,7 +67,7 @@ TEST(VtkFilesTest, Q4StressIsTheUniformUniaxialStressOfTheBlockOnTheFloor) {
 TEST(VtkFilesTest, TrussMemberForcesAreTheSeriesBarsAgainstTheWall) {
   // Two bars in series pulled against a wall 0.01 away: once it is reached both carry
   // N = k gap, k = 1 / (L1/EA1 + L2/EA2) = 200/3, whatever the load; the stress is N / A.
-  const auto dir = RunExample("truss-2d-bar-wall.json", "truss");
+  const auto dir = RunExample("truss-2d-bar-wall.json", "vtk_truss");
   const std::string pvd = Contents(dir / "vtk" / "truss-2d-bar-wall.pvd");
   const std::string grid = Contents(dir / "vtk" / "truss-2d-bar-wall_0000.vtu");
   ASSERT_GT(ArrayValues(grid, "lambda").at(0), 1.0);  // past contact (lambda = 2/3)
@@ -121,7 +110,7 @@ TEST(VtkFilesTest, TrussMemberForcesAreTheSeriesBarsAgainstTheWall) {
 }
 
 TEST(VtkFilesTest, TheCollectionsTimeIsTheStepAndOnlyTheNewRunsFilesAreThere) {
-  const auto dir = RunExample("truss-2d-bar-wall.json", "steps", "--save-every 10");
+  const auto dir = RunExample("truss-2d-bar-wall.json", "vtk_steps", "--save-every 10");
   // Saves at steps 10, 20, 30, 40 and the final state at 40, which replaces the save of 40.
   const std::string pvd = Contents(dir / "vtk" / "truss-2d-bar-wall.pvd");
   for (const char* time : {"\"10\"", "\"20\"", "\"30\"", "\"40\""}) {
