@@ -1,5 +1,7 @@
 #include "harness/cli.h"
 
+#include <contactbench_build_info.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -14,19 +16,23 @@
 
 #include "formulations/petsc/petsc.h"
 #include "formulations/registry.h"
+#include "harness/compare_table.h"
 #include "harness/interrupt.h"
 #include "harness/memory_budget.h"
 #include "harness/options.h"
 #include "harness/output_directory.h"
+#include "harness/plot_command.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
 #include "harness/run_json.h"
 #include "harness/snapshots.h"
+#include "harness/suggest.h"
 #include "io/problem_file.h"
 #include "path/near_start.h"
 #include "path/path.h"
 #include "path/replay.h"
 #include "problems/problem.h"
+#include "problems/problem_path.h"
 #include "solvers/linear_solver.h"
 
 namespace cb::harness {
@@ -46,10 +52,11 @@ FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
   return config;
 }
 
+// The library's defaults for the problem (problem_path.h), changed by the options given.
 PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
-  PathOptions options;
-  options.arc_length = a.arc_length.value_or(problem.arc_length);
-  options.max_steps = a.steps.value_or(problem.steps);
+  PathOptions options = DefaultPathOptions(problem);
+  if (a.arc_length) options.arc_length = *a.arc_length;
+  if (a.steps) options.max_steps = *a.steps;
   options.tolerance = a.tolerance;
   options.start = a.start;
   options.max_cutbacks = a.max_cutbacks;
@@ -58,28 +65,6 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.controls.time_limit_s = a.time_limit;
   options.controls.interrupted = [] { return InterruptRequested(); };
   return options;
-}
-
-// The problem's first step, as Trace takes it: what a formulation is asked to Accept before the
-// problem is run (capability depends on the model and the kind of step, not on the path).
-StepProblem FirstStep(const Problem& problem, const PathOptions& options) {
-  const StepConstraint constraint =
-      problem.loading == LoadingKind::kFixedLoad
-          ? StepConstraint::FixedLoad(problem.load)
-          : StepConstraint::ArcLength(options.arc_length, options.lambda_weight);
-  return {problem.model.get(), ZeroState(*problem.model), constraint, problem.scales};
-}
-
-// Runs the problem's loading (the fixed-load solve, or the arc-length path) with a formulation.
-PathSummary Trace(const Problem& problem, Formulation& formulation, const PathOptions& options,
-                  PathObserver* observer, const State* guess = nullptr) {
-  const State initial = ZeroState(*problem.model);
-  if (problem.loading == LoadingKind::kFixedLoad) {
-    return SolveFixedLoad(*problem.model, problem.scales, initial, problem.load, formulation,
-                          options, observer, guess);
-  }
-  return TraceArcLengthPath(*problem.model, problem.scales, initial, formulation, options,
-                            observer);
 }
 
 int List() {
@@ -107,14 +92,14 @@ int List() {
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw UsageError("--out: cannot create the directory '" + dir + "': " + ec.message());
+  if (ec) throw InputError("--out: cannot create the directory '" + dir + "': " + ec.message());
   if (!std::filesystem::is_directory(dir, ec)) {
-    throw UsageError("--out: '" + dir + "' exists and is not a directory");
+    throw InputError("--out: '" + dir + "' exists and is not a directory");
   }
   const std::string probe = dir + "/.contactbench_write_test";
   {
     std::ofstream f(probe);
-    if (!f) throw UsageError("--out: the directory '" + dir + "' is not writable");
+    if (!f) throw InputError("--out: the directory '" + dir + "' is not writable");
   }
   std::filesystem::remove(probe, ec);
 }
@@ -154,7 +139,7 @@ Problem LoadProblem(const RunArguments& a) {
     problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
                                       : MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    throw InputError(e.what());
   }
   CheckMemory(EstimateOf(problem.model->num_dofs(), problem.model->num_pairs()), what,
               a.allow_memory);
@@ -202,6 +187,27 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   return status;
 }
 
+// What the summary line of a run counts: for a fixed-load solve (P1, an LCP) the iterations and
+// the time it took, for a path its steps and what was found along it.
+std::string SummaryCounts(const Problem& problem, const PathSummary& summary,
+                          const RunRecorder& recorder) {
+  char text[256];
+  if (problem.loading == LoadingKind::kFixedLoad) {
+    int iterations = 0;
+    for (int n : recorder.iterations()) iterations += n;
+    double time_s = 0.0;
+    for (double t : recorder.solve_times_s()) time_s += t;
+    std::snprintf(text, sizeof text, "%d iterations, %.3g s", iterations, time_s);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "%d accepted steps, %d attempts, %d kinks, %d limit points, "
+                  "%d bifurcation points, %d branch switches",
+                  summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
+                  summary.bifurcations, summary.branch_switches);
+  }
+  return text;
+}
+
 // The run itself, in its claimed output directory.
 int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
              const PathOptions& options, RunJson* record, std::string* reason) {
@@ -231,7 +237,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary = [&] {
     const Activity solving("solving");
-    return Trace(problem, formulation, options, &observers, near ? &*near : nullptr);
+    return TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
   }();
   if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
   {
@@ -244,12 +250,10 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   record->accepted_steps = summary.accepted_steps;
   record->kinks = summary.kinks;
   *reason = summary.message;
-  std::fprintf(stderr,
-               "%s %s: %s (%d accepted steps, %d attempts, %d kinks, %d limit points, "
-               "%d bifurcation points, %d branch switches) -> %s\n",
-               problem.name.c_str(), formulation.name().c_str(), summary.message.c_str(),
-               summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
-               summary.bifurcations, summary.branch_switches, a.out.c_str());
+  recorder.EndProgress();
+  std::fprintf(stderr, "%s %s: %s (%s) -> %s\n", problem.name.c_str(), formulation.name().c_str(),
+               summary.message.c_str(), SummaryCounts(problem, summary, recorder).c_str(),
+               a.out.c_str());
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   if (summary.status != Status::kConverged) return kExitFailure;
   return kExitOk;
@@ -269,7 +273,7 @@ int Run(const RunArguments& a, RunJson* record) {
   const PathOptions options = MakePathOptions(a, problem);
   std::string refusal;
   if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
-    throw UsageError(refusal + " (problem '" + problem.name + "')");
+    throw InputError(refusal + " (problem '" + problem.name + "')");
   }
   if (a.start_near && problem.loading != LoadingKind::kFixedLoad) {
     throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
@@ -314,7 +318,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     } tee;
     tee.path = &path;
     tee.kinks = &kinks_only;
-    const PathSummary s = Trace(problem, *reference, options, &tee);
+    const PathSummary s = TraceProblem(problem, *reference, options, &tee);
     std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
     if (path.steps.empty()) {
       *reason = "the reference path has no verified step to replay (" + s.message + ")";
@@ -323,6 +327,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
 
+  std::vector<CompareTableRow> table;
   for (const auto& formulation : formulations) {
     for (StartKind start : a.starts) {
       const RunLabel label{problem.name,          formulation->name(),
@@ -332,6 +337,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       if (!formulation->Accepts(first, &why)) {
         std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
         runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
+        table.push_back({formulation->name(), ToString(start), "skipped", {}, {}});
         continue;
       }
       RunRecorder recorder(&files, problem, label,
@@ -342,9 +348,14 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       const PathSummary s =
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
-                             : Trace(problem, *formulation, run_options, &recorder);
+                             : TraceProblem(problem, *formulation, run_options, &recorder);
+      recorder.EndProgress();
       runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
                   a.time_limit, a.tolerance});
+      table.push_back(
+          {formulation->name(), ToString(start),
+           std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
+           recorder.iterations(), recorder.solve_times_s()});
       ++record->runs;
       record->attempts += recorder.attempts();
       record->accepted_steps += recorder.accepted();
@@ -355,7 +366,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
   *reason = "every formulation was run (runs.csv holds each one's outcome)";
-  std::fprintf(stderr, "compare: records in %s\n", a.out.c_str());
+  std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(table).c_str(), a.out.c_str());
   return kExitOk;
 }
 
@@ -396,19 +407,19 @@ int Export(const RunArguments& a) {
   try {
     text = io::ProblemToJson(problem);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    throw InputError(e.what());
   }
   const std::filesystem::path out(a.out);
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec)) {
-    throw UsageError("--out: '" + a.out + "' is a directory; give the problem file's name");
+    throw InputError("--out: '" + a.out + "' is a directory; give the problem file's name");
   }
   const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
   PrepareOutput(dir.string());
   std::ofstream file(out, std::ios::binary);
   file << text;
   file.close();
-  if (!file) throw UsageError("--out: cannot write '" + a.out + "'");
+  if (!file) throw InputError("--out: cannot write '" + a.out + "'");
   std::fprintf(stderr, "%s -> %s\n", problem.name.c_str(), a.out.c_str());
   return kExitOk;
 }
@@ -431,14 +442,25 @@ int Execute(Command command, const RunArguments& a, RunJson* record) {
       return Export(a);
     case kSchema:
       return Schema();
+    case kPlot:
+      return RunPlotScript(a);
   }
   return kExitBadArguments;
 }
 
-std::string CommandNames() {
-  std::string names;
-  for (const CommandInfo& c : Commands()) names += std::string(c.name) + ", ";
-  return names + "help";
+std::vector<std::string> CommandNames() {
+  std::vector<std::string> names;
+  for (const CommandInfo& c : Commands()) names.emplace_back(c.name);
+  names.emplace_back("help");
+  return names;
+}
+
+// `contactbench --version`: the version and the commit of the build (as run.json records them).
+int Version() {
+  const std::string commit = CONTACTBENCH_COMMIT;
+  std::cout << "contactbench " << CONTACTBENCH_VERSION
+            << (commit.empty() ? " (commit unknown)" : " (commit " + commit + ")") << "\n";
+  return kExitOk;
 }
 
 }  // namespace
@@ -447,13 +469,19 @@ int Main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   const CommandInfo* command = nullptr;
   try {
-    if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-      std::cout << UsageText();
-      return args.empty() ? kExitBadArguments : kExitOk;
+    if (args.empty()) {  // an argument error: the usage goes to standard error
+      std::cerr << UsageText();
+      return kExitBadArguments;
     }
+    if (args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+      std::cout << UsageText();
+      return kExitOk;
+    }
+    if (args[0] == "--version") return Version();
     command = FindCommand(args[0]);
     if (command == nullptr) {
-      throw UsageError("unknown command '" + args[0] + "' (valid: " + CommandNames() + ")");
+      throw UsageError("unknown command '" + args[0] + "'" + DidYouMean(args[0], CommandNames()) +
+                       " (valid: " + Join(CommandNames()) + ")");
     }
     const RunArguments a =
         ParseArguments(command->command, std::vector<std::string>(args.begin() + 1, args.end()));
@@ -465,10 +493,13 @@ int Main(int argc, char** argv) {
     record.command_line.assign(argv, argv + argc);
     record.command = command->name;
     return Execute(command->command, a, &record);
+  } catch (const InputError& e) {
+    std::cerr << "contactbench: " << e.what() << "\n";
+    return kExitBadArguments;
   } catch (const UsageError& e) {
     std::cerr << "contactbench: " << e.what() << "\n";
     if (command == nullptr) {
-      std::cerr << UsageText();
+      std::cerr << "`contactbench help` shows the usage of every command.\n";
     } else {
       std::cerr << Synopsis(*command) << "`contactbench " << command->name
                 << " --help` describes the options.\n";

@@ -11,6 +11,7 @@
 
 #include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/registry.h"
+#include "harness/suggest.h"
 #include "problems/problem.h"
 #include "solvers/linear_solver.h"
 
@@ -138,7 +139,8 @@ std::vector<std::string> NonEmptyList(const Option& option, const std::string& t
 const std::string& Choice(const Option& option, const std::string& value) {
   const std::vector<std::string> valid = option.choices();
   if (!Contains(valid, value))
-    Refuse(option, "unknown '" + value + "' (valid: " + Join(valid) + ")");
+    Refuse(option,
+           "unknown '" + value + "'" + DidYouMean(value, valid) + " (valid: " + Join(valid) + ")");
   return value;
 }
 
@@ -160,7 +162,8 @@ void FormulationOption(const Option& option, const std::string& text, bool prefi
   }
   const std::string owner = prefixed ? text.substr(0, colon) : "";
   if (prefixed && !Contains(FormulationNames(), owner)) {
-    Refuse(option, "unknown formulation '" + owner + "' (valid: " + Join(FormulationNames()) + ")");
+    Refuse(option, "unknown formulation '" + owner + "'" + DidYouMean(owner, FormulationNames()) +
+                       " (valid: " + Join(FormulationNames()) + ")");
   }
   const auto [key, value] = KeyValue(option, prefixed ? text.substr(colon + 1) : text);
   a->options[owner][key] = value;
@@ -177,7 +180,7 @@ std::vector<std::string> BifurcationModes() { return {"off", "detect", "switch"}
 
 // --- the table -------------------------------------------------------------------------------
 
-constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema;
+constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema | kPlot;
 constexpr unsigned kProblemCommands = kRun | kCompare | kExport;
 constexpr unsigned kPathCommands = kRun | kCompare;
 
@@ -306,6 +309,16 @@ std::vector<Option> MakeOptions() {
        "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
        "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"",
        nullptr, [](O, S v, A* a) { a->petsc_options = v; }},
+      {"--step", "N", kPlot, Need::kOptional, false,
+       "the step whose residual history is drawn (default: the one with the most iterations)",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->plot_step = ParseInteger(o, v);
+         if (*a->plot_step <= 0) Refuse(o, "must be a positive integer");
+       }},
+      {"--figures", "DIR", kPlot, Need::kOptional, false,
+       "where the figures go (default OUT_DIR/figures)", nullptr,
+       [](O, S v, A* a) { a->figures = v; }},
       {"--help", "", kAll, Need::kOptional, false, "print this command's options and exit", nullptr,
        [](O, S, A* a) { a->help = true; }},
   };
@@ -408,6 +421,9 @@ std::vector<std::string> UsageItems(Command command) {
     if (o.need == Need::kOptional) optional.push_back("[" + item + "]");
   }
   std::vector<std::string> items;
+  for (const CommandInfo& c : Commands()) {
+    if (c.command == command && c.operand != nullptr) items.emplace_back(c.operand);
+  }
   if (problem.size() == 1) items.push_back(problem.front());
   if (problem.size() > 1)
     items.push_back(std::string("(").append(Join(problem, " | ")).append(")"));
@@ -472,6 +488,13 @@ const std::vector<CommandInfo>& Commands() {
        "(docs/problem-files.md)."},
       {kSchema, "schema",
        "Prints the columns of every record file as markdown (the tables of docs/records.md)."},
+      {kPlot, "plot",
+       "Draws the figures of a run's or comparison's records (results/plot_run.py, with "
+       "Debian's python3-matplotlib and python3-pandas): the path with its kinks and critical "
+       "points, the deformed shapes with the obstacles, the iterations and time per step, a "
+       "step's residual history and, for a comparison, the performance profiles and iteration "
+       "histograms.",
+       "OUT_DIR", "the --out directory of `contactbench run` or `contactbench compare`"},
   };
   return commands;
 }
@@ -489,18 +512,26 @@ const std::vector<Option>& Options() {
 }
 
 RunArguments ParseArguments(Command command, const std::vector<std::string>& args) {
-  const char* command_name = "";
+  const CommandInfo* info = nullptr;
   for (const CommandInfo& c : Commands()) {
-    if (c.command == command) command_name = c.name;
+    if (c.command == command) info = &c;
   }
+  if (info == nullptr) throw std::logic_error("ParseArguments: a command without CommandInfo");
+  const char* command_name = info->name;
   RunArguments a;
   std::set<std::string> given;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& name = args[i];
+    if (info->operand != nullptr && (name.empty() || name[0] != '-')) {
+      if (!a.operand.empty()) throw UsageError(std::string(info->operand) + " is given twice");
+      a.operand = name;
+      continue;
+    }
     const Option* o = FindOption(name, command);
     if (o == nullptr) {
-      throw UsageError(std::string(command_name) + ": unknown option '" + name +
-                       "' (valid: " + Join(OptionNames(command)) + ")");
+      throw UsageError(std::string(command_name) + ": unknown option '" + name + "'" +
+                       DidYouMean(name, OptionNames(command)) +
+                       " (valid: " + Join(OptionNames(command)) + ")");
     }
     const bool repeated = !given.insert(name).second;
     if (repeated && !o->repeatable) throw UsageError(name + " is given twice");
@@ -510,6 +541,9 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     if (a.help) return a;
   }
   CheckNeeds(command, given);
+  if (info->operand != nullptr && a.operand.empty()) {
+    throw UsageError(std::string(info->operand) + " is required");
+  }
   if (command == kCompare) ApplyCompareDefaults(&a);
   return a;
 }
@@ -519,7 +553,7 @@ std::string Synopsis(const CommandInfo& command) { return UsageLine(command, "us
 std::string UsageText() {
   std::string text = "usage:\n";
   for (const CommandInfo& c : Commands()) text += UsageLine(c, "  ");
-  text += "  contactbench help\n\n";
+  text += "  contactbench help\n  contactbench --version\n\n";
   text += Fill(Words("`contactbench COMMAND --help` says what a command does and what each of "
                      "its options means."),
                0, 0) +
@@ -529,8 +563,14 @@ std::string UsageText() {
 
 std::string CommandHelp(const CommandInfo& command) {
   std::string text = Synopsis(command) + "\n";
-  text += Fill(Words(std::string(command.summary)), 0, 0) + "\n\noptions:\n";
+  text += Fill(Words(std::string(command.summary)), 0, 0) + "\n\n";
   constexpr std::size_t kHelpColumn = 30;
+  if (command.operand != nullptr) {
+    std::string line = std::string("  ") + command.operand;
+    line.resize(kHelpColumn, ' ');
+    text += line + Fill(Words(command.operand_help), kHelpColumn, kHelpColumn) + "\n\n";
+  }
+  text += "options:\n";
   for (const Option& o : Options()) {
     if (!Takes(o, command.command)) continue;
     std::string line = "  " + NameAndValue(o);

@@ -11,12 +11,19 @@
 
 #include "formulations/common/config.h"
 #include "path/path.h"
+#include "problems/problem_path.h"
 
 namespace cb::harness {
 
-// A usage error: reported with exit status 2.
+// A usage error: reported with exit status 2 and the command's usage.
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+// Bad input that is no mistake in the form of the command line (a bad problem file, a problem
+// the formulation refuses, an output directory that cannot be used): exit status 2 as well,
+// but reported by its message alone, since the usage would not help.
+struct InputError : UsageError {
+  using UsageError::UsageError;
 };
 
 // The subcommands, as bits of a set.
@@ -26,12 +33,16 @@ enum Command : unsigned {
   kCompare = 1u << 2,
   kExport = 1u << 3,
   kSchema = 1u << 4,
+  kPlot = 1u << 5,
 };
 
 struct CommandInfo {
   Command command;
   const char* name;
   const char* summary;  // what it does (plain text, wrapped when printed)
+  // The one argument that is not an option ("OUT_DIR"), required; nullptr: none.
+  const char* operand = nullptr;
+  const char* operand_help = nullptr;
 };
 // In the order of the usage text.
 const std::vector<CommandInfo>& Commands();
@@ -60,13 +71,18 @@ struct RunArguments {
   StartKind start = StartKind::kWarm;
   bool start_near = false;  // run --start near: a warm start near a reference solution
   double near_offset = 1e-2;
-  double tolerance = 1e-8;
-  int max_cutbacks = 6;
-  bool locate_kinks = true;
-  BifurcationMode bifurcations = BifurcationMode::kDetect;
+  // The library's defaults (problem_path.h), so that a run without options traces as a
+  // program using DefaultPathOptions does.
+  double tolerance = PathOptions().tolerance;
+  int max_cutbacks = PathOptions().max_cutbacks;
+  bool locate_kinks = PathOptions().locate_kinks;
+  BifurcationMode bifurcations = kDefaultBifurcationMode;
   int save_every = 0;
   double time_limit = 0.0;
   std::map<std::string, std::string> settings;
+  std::string operand;           // the command's operand (plot: the run's directory)
+  std::optional<int> plot_step;  // plot --step
+  std::string figures;           // plot --figures
 };
 
 // Whether a command needs an option.

@@ -43,7 +43,7 @@ OutputLock::OutputLock(const std::string& directory) : path_(directory + "/" + k
   for (;;) {
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) {
-      throw UsageError("--out: cannot create the lock file '" + path_ +
+      throw InputError("--out: cannot create the lock file '" + path_ +
                        "': " + std::strerror(errno));
     }
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
@@ -51,10 +51,10 @@ OutputLock::OutputLock(const std::string& directory) : path_(directory + "/" + k
       ::close(fd_);
       fd_ = -1;
       if (error != EWOULDBLOCK) {
-        throw UsageError("--out: cannot lock '" + path_ + "': " + std::strerror(error));
+        throw InputError("--out: cannot lock '" + path_ + "': " + std::strerror(error));
       }
       const std::string pid = HolderOf(path_);
-      throw UsageError("--out: '" + directory + "' is in use by another contactbench run (pid " +
+      throw InputError("--out: '" + directory + "' is in use by another contactbench run (pid " +
                        (pid.empty() ? "unknown" : pid) + ")");
     }
     if (StillLinked(fd_, path_)) break;
@@ -91,14 +91,14 @@ void ClaimOutput(const std::string& directory, bool overwrite) {
   const std::vector<std::string> records = RecordsIn(directory);
   if (records.empty()) return;
   if (!overwrite) {
-    throw UsageError("--out: '" + directory + "' holds the records of an earlier run (" +
+    throw InputError("--out: '" + directory + "' holds the records of an earlier run (" +
                      Join(records) + "); give --overwrite to replace them, or another directory");
   }
   for (const std::string& name : records) {
     std::error_code ec;
     std::filesystem::remove_all(directory + "/" + name, ec);
     if (ec) {
-      throw UsageError("--overwrite: cannot remove '" + directory + "/" + name +
+      throw InputError("--overwrite: cannot remove '" + directory + "/" + name +
                        "': " + ec.message());
     }
   }

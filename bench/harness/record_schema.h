@@ -4,6 +4,7 @@
 // record file, record_schemas.h); it yields a Cell, formatted as CsvWriter formats its type.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,7 +15,8 @@
 
 namespace cb::harness {
 
-// One field's value: text, a double (shortest round-trip form), an integer or a bool
+// One field's value: text, a double (shortest round-trip form, always read back as a real), an
+// integer or a bool
 // ("true"/"false"). Other types are refused at compile time rather than silently converted.
 class Cell {
  public:
@@ -23,6 +25,7 @@ class Cell {
   Cell(const char* text) : value_(std::string(text)) {}
   Cell(double value) : value_(value) {}
   Cell(int value) : value_(value) {}
+  Cell(std::int64_t value) : value_(value) {}
   Cell(bool value) : value_(value) {}
   template <typename T>
   Cell(T) = delete;
@@ -32,7 +35,7 @@ class Cell {
   }
 
  private:
-  std::variant<std::string, double, int, bool> value_;
+  std::variant<std::string, double, int, std::int64_t, bool> value_;
 };
 
 template <typename Data>

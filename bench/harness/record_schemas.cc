@@ -124,7 +124,10 @@ Column<NodeRow> NodeLambda() {
 }
 std::vector<Column<NodeRow>> NodeColumns() {
   return {
-      {"node", "the node (0-based)", [](const NodeRow& d) -> Cell { return d.node; }},
+      {"node",
+       "the node: its id in the problem file (a Gmsh mesh: the node's tag); a named problem "
+       "numbers its nodes from 0",
+       [](const NodeRow& d) -> Cell { return d.node; }},
       {"x", "reference coordinate", [](const NodeRow& d) -> Cell { return d.reference[0]; }},
       {"y", "reference coordinate", [](const NodeRow& d) -> Cell { return d.reference[1]; }},
       {"z", "reference coordinate", [](const NodeRow& d) -> Cell { return d.reference[2]; }, true},
@@ -150,8 +153,11 @@ Column<PairRow> PairLambda() {
 std::vector<Column<PairRow>> PairColumns() {
   return {
       {"pair", "the contact pair (0-based)", [](const PairRow& d) -> Cell { return d.pair; }},
-      {"node", "the pair's node", [](const PairRow& d) -> Cell { return d.node; }},
-      {"obstacle", "the pair's obstacle (0-based)",
+      {"node", "the pair's node (as `node` in `snapshots.csv`)",
+       [](const PairRow& d) -> Cell { return d.node; }},
+      {"obstacle",
+       "the pair's obstacle: its `id` in the problem file; a named problem numbers its "
+       "obstacles from 0",
        [](const PairRow& d) -> Cell { return d.obstacle; }},
       {"g", "the gap g = -phi(u) (> 0 open, 0 in contact)",
        [](const PairRow& d) -> Cell { return d.gap; }},
@@ -399,7 +405,8 @@ const RecordSchema<CellCornerRow>& CellsSchema() {
           {"cell", "the element (a truss member or a Q4 element, 0-based)",
            [](const D& d) -> Cell { return d.cell; }},
           {"corner", "the corner within the element", [](const D& d) -> Cell { return d.corner; }},
-          {"node", "the corner's node", [](const D& d) -> Cell { return d.node; }},
+          {"node", "the corner's node (as `node` in `snapshots.csv`)",
+           [](const D& d) -> Cell { return d.node; }},
       }};
   return schema;
 }

@@ -3,6 +3,7 @@
 // the schema alone decides the columns, their order and their meaning.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,24 +42,26 @@ struct IterationRow {
   const IterationRecord& iteration;
 };
 
-// A node of a body at a state; `label` and `lambda` say which saved state.
+// A node of a body at a state; `label` and `lambda` say which saved state. `node` is the
+// node's id (Problem::node_ids).
 struct NodeRow {
   int step = 0;
   std::string_view label;
   double lambda = 0.0;
-  int node = 0;
+  std::int64_t node = 0;
   Point reference;
   Point moved;
 };
 
-// A contact pair at a state; `label` says which saved state.
+// A contact pair at a state; `label` says which saved state. `node` and `obstacle` are the
+// ids of Problem::node_ids and obstacle_ids.
 struct PairRow {
   int step = 0;
   std::string_view label;
   double lambda = 0.0;
   int pair = 0;
-  int node = 0;
-  int obstacle = 0;
+  std::int64_t node = 0;
+  std::string obstacle;
   double gap = 0.0;
   double reaction = 0.0;
 };
@@ -71,11 +74,11 @@ struct ComplementarityRow {
   double w = 0.0;
 };
 
-// One corner of an element.
+// One corner of an element; `node` is the node's id.
 struct CellCornerRow {
   int cell = 0;
   int corner = 0;
-  int node = 0;
+  std::int64_t node = 0;
 };
 
 // One parameter of a problem (or a size of its model).

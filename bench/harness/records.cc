@@ -1,7 +1,5 @@
 #include "harness/records.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "harness/interrupt.h"
@@ -17,26 +15,26 @@ RecordFiles::RecordFiles(const std::string& directory)
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
-    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {
-  progress_ = isatty(STDERR_FILENO) == 1;
-}
+    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {}
 
 void RunRecorder::OnAttempt(const StepAttempt& a) {
   ++attempts_;
   if (!a.accepted) all_verified_ = false;
   if (a.accepted) ++accepted_;
+  iterations_.push_back(a.result.counts.iterations);
+  solve_times_s_.push_back(a.result.time_s);
   files_->steps().Write({label_, problem_, a});
   for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
-  if (progress_) ShowProgress(a);
+  ShowProgress(a);
 }
 
-void RunRecorder::ShowProgress(const StepAttempt& a) const {
-  std::fprintf(stderr, "\r%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d   ",
-               label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
-               total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
-               a.result.counts.iterations);
-  if (a.step == total_steps_ && (a.accepted || label_.mode != "run")) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
+void RunRecorder::ShowProgress(const StepAttempt& a) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%s %s (%s): step %d/%d%s lambda=%.6g iterations=%d",
+                label_.problem.c_str(), label_.formulation.c_str(), label_.start.c_str(), a.step,
+                total_steps_, a.accepted ? "" : " (not verified)", a.state.lambda,
+                a.result.counts.iterations);
+  progress_.Update(text, accepted_, total_steps_);
 }
 
 void RunRecorder::OnKink(const KinkRecord& k) { files_->kinks().Write({label_, problem_, k}); }
@@ -45,41 +43,53 @@ void RunRecorder::OnCriticalPoint(const CriticalPointRecord& c) {
   files_->critical().Write({label_, problem_, c});
 }
 
-std::vector<NodeRow> NodeRows(const BodyContactModel& model, const State& state, int step,
+std::int64_t NodeId(const Problem& problem, int node) {
+  return problem.node_ids.empty() ? node : problem.node_ids.at(static_cast<std::size_t>(node));
+}
+
+std::string ObstacleId(const Problem& problem, int obstacle) {
+  return problem.obstacle_ids.empty() ? std::to_string(obstacle)
+                                      : problem.obstacle_ids.at(static_cast<std::size_t>(obstacle));
+}
+
+std::vector<NodeRow> NodeRows(const Problem& problem, const State& state, int step,
                               std::string_view label) {
-  const ElasticBody& body = model.body();
+  const ElasticBody& body = problem.body->body();
   std::vector<NodeRow> rows;
   rows.reserve(body.num_nodes());
   for (int n = 0; n < body.num_nodes(); ++n) {
-    rows.push_back({step, label, state.lambda, n, body.reference(n), body.Position(n, state.u)});
+    rows.push_back({step, label, state.lambda, NodeId(problem, n), body.reference(n),
+                    body.Position(n, state.u)});
   }
   return rows;
 }
 
-std::vector<PairRow> PairRows(const BodyContactModel& model, const State& state, int step,
+std::vector<PairRow> PairRows(const Problem& problem, const State& state, int step,
                               std::string_view label) {
+  const BodyContactModel& model = *problem.body;
   Vec phi;
   model.Gaps(state.u, &phi);
   std::vector<PairRow> rows;
   rows.reserve(model.num_pairs());
   for (int p = 0; p < model.num_pairs(); ++p) {
     const ContactPair& pair = model.pairs()[p];
-    rows.push_back({step, label, state.lambda, p, pair.node, pair.obstacle, -phi[p], state.r[p]});
+    rows.push_back({step, label, state.lambda, p, NodeId(problem, pair.node),
+                    ObstacleId(problem, pair.obstacle), -phi[p], state.r[p]});
   }
   return rows;
 }
 
 namespace {
 
-void WriteBodyState(const std::string& directory, const BodyContactModel& model, const State& state,
+void WriteBodyState(const std::string& directory, const Problem& problem, const State& state,
                     int step) {
-  RecordWriter<NodeRow> solution(directory, SolutionSchema(), model.body().dim());
-  for (const NodeRow& row : NodeRows(model, state, step, "final")) {
+  RecordWriter<NodeRow> solution(directory, SolutionSchema(), problem.body->body().dim());
+  for (const NodeRow& row : NodeRows(problem, state, step, "final")) {
     StopIfInterrupted("writing solution.csv");
     solution.Write(row);
   }
   RecordWriter<PairRow> contacts(directory, ContactsSchema());
-  for (const PairRow& row : PairRows(model, state, step, "final")) {
+  for (const PairRow& row : PairRows(problem, state, step, "final")) {
     StopIfInterrupted("writing contacts.csv");
     contacts.Write(row);
   }
@@ -101,7 +111,7 @@ void WriteComplementarityState(const std::string& directory, const Complementari
 void WriteFinalState(const std::string& directory, const Problem& problem, const State& state,
                      int step) {
   if (problem.body != nullptr) {
-    WriteBodyState(directory, *problem.body, state, step);
+    WriteBodyState(directory, problem, state, step);
   } else if (const auto* lcp = dynamic_cast<const ComplementarityModel*>(problem.model.get())) {
     WriteComplementarityState(directory, *lcp, state, step);
   }

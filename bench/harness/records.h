@@ -6,10 +6,12 @@
 // record_schemas.h; docs/records.md describes them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "harness/progress.h"
 #include "harness/record_schemas.h"
 #include "path/path.h"
 #include "problems/problem.h"
@@ -45,9 +47,15 @@ class RunRecorder final : public PathObserver {
   bool all_verified() const { return all_verified_; }
   int attempts() const { return attempts_; }
   int accepted() const { return accepted_; }
+  int total_steps() const { return total_steps_; }
+  // Per attempt, in order: the solver's iterations and the solve's wall time.
+  const std::vector<int>& iterations() const { return iterations_; }
+  const std::vector<double>& solve_times_s() const { return solve_times_s_; }
+  // Ends the progress line, so that a message after the run starts a line of its own.
+  void EndProgress() { progress_.End(); }
 
  private:
-  void ShowProgress(const StepAttempt& attempt) const;
+  void ShowProgress(const StepAttempt& attempt);
 
   RecordFiles* files_;
   const Problem& problem_;
@@ -56,13 +64,21 @@ class RunRecorder final : public PathObserver {
   int attempts_ = 0;
   int accepted_ = 0;
   int total_steps_ = 0;
-  bool progress_ = false;  // on a terminal only
+  std::vector<int> iterations_;
+  std::vector<double> solve_times_s_;
+  ProgressLine progress_;  // on a terminal only
 };
 
-// The rows of a body's state (step `step`, saved as `label`): one per node, one per pair.
-std::vector<NodeRow> NodeRows(const BodyContactModel& model, const State& state, int step,
+// The id the records give node `node` and obstacle `obstacle` of a body problem: the problem
+// file's (Problem::node_ids, obstacle_ids), else the 0-based index.
+std::int64_t NodeId(const Problem& problem, int node);
+std::string ObstacleId(const Problem& problem, int obstacle);
+
+// The rows of a body problem's state (step `step`, saved as `label`): one per node, one per
+// pair.
+std::vector<NodeRow> NodeRows(const Problem& problem, const State& state, int step,
                               std::string_view label);
-std::vector<PairRow> PairRows(const BodyContactModel& model, const State& state, int step,
+std::vector<PairRow> PairRows(const Problem& problem, const State& state, int step,
                               std::string_view label);
 
 // The final state (the last accepted one, reached at step `step`): DIR/solution.csv and

@@ -2,58 +2,13 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <stdexcept>
+#include <map>
 
 #include "harness/interrupt.h"
 #include "harness/records.h"
+#include "harness/vtk_files.h"
 
 namespace cb::harness {
-
-namespace {
-
-// VTK cell types of the legacy/XML formats.
-constexpr int kVtkLine = 3;
-constexpr int kVtkQuad = 9;
-
-// Text in an XML attribute or comment.
-std::string XmlEscaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-// Closes `out` (which flushes it) and checks every write: a VTK file cut short is no VTK file,
-// so it is removed rather than kept.
-void CloseOrRemove(std::ofstream& out, const std::string& path) {
-  out.close();
-  if (out) return;
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
-  throw WriteError(path, "the write failed (disk full?); the file was removed");
-}
-
-}  // namespace
 
 SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
     : directory_(directory), problem_(problem), every_(every) {
@@ -68,8 +23,26 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
   for (std::size_t c = 0; c < all.size(); ++c) {
     StopIfInterrupted("writing cells.csv");
     for (std::size_t k = 0; k < all[c].size(); ++k) {
-      cells.Write({static_cast<int>(c), static_cast<int>(k), all[c][k]});
+      cells.Write({static_cast<int>(c), static_cast<int>(k), NodeId(problem_, all[c][k])});
     }
+  }
+  WriteObstacles();
+}
+
+// Each obstacle's surface around the body's reference configuration, written once: obstacles
+// are rigid and fixed.
+void SnapshotWriter::WriteObstacles() {
+  const ElasticBody& body = problem_.body->body();
+  std::vector<Point> reference;
+  reference.reserve(body.num_nodes());
+  for (int n = 0; n < body.num_nodes(); ++n) reference.push_back(body.reference(n));
+  const Box around = BoxAround(reference);
+  const auto& obstacles = problem_.body->obstacles();
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const std::string file = problem_.name + "_obstacle_" + std::to_string(k) + ".vtp";
+    const std::string id = ObstacleId(problem_, static_cast<int>(k));
+    WriteSurfaceVtp(directory_ + "/vtk/" + file, ObstacleSurface(*obstacles[k], around), id);
+    obstacles_.push_back({file, id});
   }
 }
 
@@ -79,16 +52,16 @@ void SnapshotWriter::OnAttempt(const StepAttempt& a) {
 
 void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
   if (c.kind == CriticalPointRecord::Kind::kStabilityChange) return;
-  Save(c.state, c.step, ToString(c.kind));
+  SaveAt(c.state, c.step, ToString(c.kind), c.step - 0.5);  // between steps step - 1 and step
 }
 
-void SnapshotWriter::Save(const State& state, int step, const std::string& label) {
+void SnapshotWriter::SaveAt(const State& state, int step, const std::string& label, double time) {
   if (!problem_.body) return;
-  for (const NodeRow& row : NodeRows(*problem_.body, state, step, label)) {
+  for (const NodeRow& row : NodeRows(problem_, state, step, label)) {
     StopIfInterrupted("writing snapshots.csv");
     nodes_->Write(row);
   }
-  for (const PairRow& row : PairRows(*problem_.body, state, step, label)) {
+  for (const PairRow& row : PairRows(problem_, state, step, label)) {
     StopIfInterrupted("writing snapshot_contacts.csv");
     contacts_->Write(row);
   }
@@ -96,97 +69,27 @@ void SnapshotWriter::Save(const State& state, int step, const std::string& label
   char name[64];
   std::snprintf(name, sizeof name, "_%04d.vtu", static_cast<int>(saved_.size()));
   const std::string file = problem_.name + name;
-  WriteVtu(directory_ + "/vtk/" + file, state, step);
-  saved_.push_back({file, step, label, state.lambda});
-  WritePvd();
+  WriteBodyVtu(directory_ + "/vtk/" + file, problem_, state, step);
+  saved_.push_back({file, step, label, state.lambda, time});
+  WriteCollection();
 }
 
-// VTK XML unstructured grid (ASCII): reference points, the elements as cells, and as point
-// data the displacement (3 components, so ParaView's "Warp By Vector" applies) and the sum of
-// the contact reactions at each node; the load parameter and step as field data.
-void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int step) const {
-  const BodyContactModel& model = *problem_.body;
-  const ElasticBody& body = model.body();
-  const int dim = body.dim();
-  const std::vector<std::vector<int>> cells = body.Cells();
-  std::vector<double> reaction(body.num_nodes(), 0.0);
-  for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
-
-  std::ofstream out(path);
-  if (!out) throw WriteError(path, "cannot open it");
-  out.precision(17);
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "  <UnstructuredGrid>\n"
-      << "    <FieldData>\n"
-      << "      <DataArray type=\"Float64\" Name=\"lambda\" NumberOfTuples=\"1\" format=\"ascii\">"
-      << state.lambda << "</DataArray>\n"
-      << "      <DataArray type=\"Int32\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">"
-      << step << "</DataArray>\n"
-      << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << body.num_nodes() << "\" NumberOfCells=\"" << cells.size()
-      << "\">\n"
-      << "      <Points>\n"
-      << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int n = 0; n < body.num_nodes(); ++n) {
-    const Point x = body.reference(n);
-    out << "         ";
-    for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? x[c] : 0.0);
-    out << '\n';
-  }
-  out << "        </DataArray>\n      </Points>\n      <Cells>\n"
-      << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n         ";
-  for (const auto& cell : cells) {
-    for (int n : cell) out << ' ' << n;
-  }
-  out << "\n        </DataArray>\n"
-      << "        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n         ";
-  int offset = 0;
-  for (const auto& cell : cells) out << ' ' << (offset += static_cast<int>(cell.size()));
-  out << "\n        </DataArray>\n"
-      << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ";
-  for (const auto& cell : cells) out << ' ' << (cell.size() == 2 ? kVtkLine : kVtkQuad);
-  out << "\n        </DataArray>\n      </Cells>\n"
-      << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
-      << "        <DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" "
-         "format=\"ascii\">\n";
-  for (int n = 0; n < body.num_nodes(); ++n) {
-    const Point x = body.reference(n);
-    const Point moved = body.Position(n, state.u);
-    out << "         ";
-    for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? moved[c] - x[c] : 0.0);
-    out << '\n';
-  }
-  out << "        </DataArray>\n"
-      << "        <DataArray type=\"Float64\" Name=\"contact_reaction\" format=\"ascii\">\n";
-  for (double r : reaction) out << "          " << r << '\n';
-  out << "        </DataArray>\n      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
-      << "</VTKFile>\n";
-  CloseOrRemove(out, path);
-}
-
-// The collection, one dataset per saved state in order; the "timestep" is the save index
-// (two saves may share a step: a critical point and the regular save).
-void SnapshotWriter::WritePvd() const {
-  const std::string path = directory_ + "/vtk/" + problem_.name + ".pvd";
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw WriteError(temporary, "cannot open it");
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    for (std::size_t k = 0; k < saved_.size(); ++k) {
-      out << "    <DataSet timestep=\"" << k << "\" group=\"\" part=\"0\" file=\""
-          << XmlEscaped(saved_[k].file) << "\"/>  <!-- step " << saved_[k].step << ", "
-          << saved_[k].label << ", lambda " << saved_[k].lambda << " -->\n";
+void SnapshotWriter::WriteCollection() const {
+  std::map<double, const Saved*> at_time;  // a later save at a time replaces an earlier one
+  for (const Saved& saved : saved_) at_time[saved.time] = &saved;
+  std::vector<PvdDataSet> datasets;
+  for (const auto& [time, saved] : at_time) {
+    char lambda[32];
+    std::snprintf(lambda, sizeof lambda, "%.17g", saved->lambda);
+    datasets.push_back(
+        {time, 0, problem_.name, saved->file,
+         "step " + std::to_string(saved->step) + ", " + saved->label + ", lambda " + lambda});
+    for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+      datasets.push_back(
+          {time, static_cast<int>(k) + 1, "obstacle " + obstacles_[k].id, obstacles_[k].file, ""});
     }
-    out << "  </Collection>\n</VTKFile>\n";
-    CloseOrRemove(out, temporary);
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);  // atomic: never a half-written collection
-  if (ec) throw WriteError(path, "cannot rename '" + temporary + "' to it: " + ec.message());
+  WritePvd(directory_ + "/vtk/" + problem_.name + ".pvd", datasets);
 }
 
 }  // namespace cb::harness

@@ -1,10 +1,14 @@
 // Deformed configurations saved along a path: every N-th accepted step, every critical point
 // (limit and bifurcation points) and the final state, as long-format CSV (DIR/snapshots.csv,
 // one row per node and saved state; DIR/snapshot_contacts.csv, one row per pair and saved
-// state) and as VTK files that open in ParaView (DIR/vtk/<problem>_NNNN.vtu, one per saved
-// state, collected by DIR/vtk/<problem>.pvd, rewritten after each save so that an interrupted
-// run leaves a valid collection). DIR/cells.csv lists the elements (cell, corner, node). The
-// CSV columns are those of record_schemas.h.
+// state) and as VTK files that open in ParaView (vtk_files.h): DIR/vtk/<problem>_NNNN.vtu, one
+// per saved state, with the elements' quantities as cell data; DIR/vtk/<problem>_obstacle_K.vtp,
+// one per obstacle; and DIR/vtk/<problem>.pvd, the collection, rewritten after each save so
+// that an interrupted run leaves a valid one. The collection's time is the step: a state saved
+// at step k is at time k, a critical point found between steps k - 1 and k at k - 1/2 (a later
+// save at the same time replaces an earlier one in it, as the final state replaces the regular
+// save of the last step); the obstacles are blocks of their own at every time. DIR/cells.csv
+// lists the elements (cell, corner, node). The CSV columns are those of record_schemas.h.
 #pragma once
 
 #include <memory>
@@ -26,8 +30,10 @@ class SnapshotWriter final : public PathObserver {
   void OnAttempt(const StepAttempt& attempt) override;
   void OnCriticalPoint(const CriticalPointRecord& c) override;
 
-  // Saves `state` with a label ("step", "limit", "bifurcation", "final", ...).
-  void Save(const State& state, int step, const std::string& label);
+  // Saves `state`, reached at step `step`, with a label ("step", "final", ...).
+  void Save(const State& state, int step, const std::string& label) {
+    SaveAt(state, step, label, step);
+  }
 
   int saved() const { return static_cast<int>(saved_.size()); }
 
@@ -37,9 +43,15 @@ class SnapshotWriter final : public PathObserver {
     int step;
     std::string label;
     double lambda;
+    double time;  // in the collection
   };
-  void WriteVtu(const std::string& path, const State& state, int step) const;
-  void WritePvd() const;
+  struct ObstacleFile {
+    std::string file;  // relative to DIR/vtk
+    std::string id;
+  };
+  void SaveAt(const State& state, int step, const std::string& label, double time);
+  void WriteObstacles();
+  void WriteCollection() const;
 
   std::string directory_;
   const Problem& problem_;
@@ -47,6 +59,7 @@ class SnapshotWriter final : public PathObserver {
   std::unique_ptr<RecordWriter<NodeRow>> nodes_;
   std::unique_ptr<RecordWriter<PairRow>> contacts_;
   std::vector<Saved> saved_;
+  std::vector<ObstacleFile> obstacles_;
 };
 
 // Forwards every observation to several observers, in order.

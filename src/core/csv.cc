@@ -20,6 +20,14 @@ std::string FormatDouble(double value) {
   return std::string(buffer, end);
 }
 
+std::string FormatReal(double value) {
+  std::string text = FormatDouble(value);
+  // Shortest round-trip text has a '.' or an exponent unless the value is integral; nan and
+  // inf read as reals already.
+  if (text.find_first_of(".eni") == std::string::npos) text += ".0";
+  return text;
+}
+
 namespace {
 
 // RFC 4180 quoting: only fields with a comma, quote or line break are quoted.
@@ -59,7 +67,7 @@ CsvWriter::Row& CsvWriter::Row::operator<<(std::string_view text) {
   return *this;
 }
 CsvWriter::Row& CsvWriter::Row::operator<<(double value) {
-  fields_.push_back(FormatDouble(value));
+  fields_.push_back(FormatReal(value));
   return *this;
 }
 CsvWriter::Row& CsvWriter::Row::operator<<(int value) {

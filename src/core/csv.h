@@ -13,6 +13,10 @@ namespace cb {
 
 // Formats a double in the shortest form that reads back to the same value ("nan", "inf").
 std::string FormatDouble(double value);
+// FormatDouble, marked as a real number when it would read as an integer ("1" -> "1.0",
+// "-0" -> "-0.0"), so that a CSV column of doubles has one type in every file, whatever its
+// values (a reader infers int64 from "1" and float64 from "0.5").
+std::string FormatReal(double value);
 
 // A record file could not be written completely; `path()` names it. The file holds only whole
 // lines (or nothing).

@@ -431,6 +431,8 @@ Problem FinishBody(BodyInput& in, const std::shared_ptr<const ElasticBody>& body
     problem.steps = p.Integer("steps");
   }
   ReadControl(in, body->dofs(), &problem);
+  problem.node_ids = in.nodes.ids;
+  problem.obstacle_ids = obstacles.ids;
   return problem;
 }
 

@@ -3,6 +3,7 @@
 // free dof (an index into u) or fixed at zero (a support).
 #pragma once
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,13 @@ class DofMap {
   std::vector<int> map_;
 };
 
+// A quantity of the elements at a state, for output: its name (as VTK files and plots label
+// it) and one value per element, in the order of ElasticBody::Cells().
+struct CellField {
+  std::string name;
+  std::vector<double> values;
+};
+
 class ElasticBody {
  public:
   virtual ~ElasticBody() = default;
@@ -50,6 +58,9 @@ class ElasticBody {
 
   // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral; VTK cells).
   virtual std::vector<std::vector<int>> Cells() const = 0;
+  // The element quantities at displacement u (a truss's member forces, a continuum's stress);
+  // none by default.
+  virtual std::vector<CellField> CellFields(const Vec& /*u*/) const { return {}; }
 
   int num_dofs() const { return dofs().num_dofs(); }
   // Current position X + u of a node; fixed components stay at X.

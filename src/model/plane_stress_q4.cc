@@ -39,6 +39,33 @@ Eigen::Matrix3d ElasticityMatrix(const PlaneStressMaterial& m) {
   return d;
 }
 
+// The strain-displacement matrix B (eps = B u_e, eps = (eps_xx, eps_yy, gamma_xy)) of the
+// bilinear isoparametric quadrilateral with nodal coordinates `xy` (row a = node a) at the
+// natural coordinates (xi, eta), and det J there. Returns false if det J <= 0 (a degenerate or
+// clockwise element).
+bool StrainDisplacement(const Eigen::Matrix<double, 4, 2>& xy, double xi, double eta, Mat38* b,
+                        double* det) {
+  // Derivatives of N_a = (1 + xi xi_a)(1 + eta eta_a) / 4 in natural coordinates.
+  Eigen::Matrix<double, 2, 4> dn_nat;
+  for (int a = 0; a < 4; ++a) {
+    dn_nat(0, a) = 0.25 * kXiNode[a] * (1.0 + eta * kEtaNode[a]);
+    dn_nat(1, a) = 0.25 * kEtaNode[a] * (1.0 + xi * kXiNode[a]);
+  }
+  // J(i, j) = d x_j / d xi_i; the physical derivatives are J^{-1} dN/dxi.
+  const Eigen::Matrix2d jac = dn_nat * xy;
+  *det = jac.determinant();
+  if (!(*det > 0.0)) return false;
+  const Eigen::Matrix<double, 2, 4> dn = jac.inverse() * dn_nat;
+  b->setZero();
+  for (int a = 0; a < 4; ++a) {
+    (*b)(0, 2 * a) = dn(0, a);
+    (*b)(1, 2 * a + 1) = dn(1, a);
+    (*b)(2, 2 * a) = dn(1, a);
+    (*b)(2, 2 * a + 1) = dn(0, a);
+  }
+  return true;
+}
+
 // Element stiffness K_e = sum_gauss B^T D B det J (2 x 2 Gauss, unit weights) of the bilinear
 // isoparametric quadrilateral with nodal coordinates `xy` (row a = node a). Returns false if
 // det J <= 0 at a Gauss point (degenerate or clockwise element).
@@ -48,24 +75,9 @@ bool ElementStiffness(const Eigen::Matrix<double, 4, 2>& xy, const Eigen::Matrix
   for (int gp = 0; gp < 4; ++gp) {
     const double xi = (gp == 0 || gp == 3) ? -g : g;
     const double eta = gp < 2 ? -g : g;
-    // Derivatives of N_a = (1 + xi xi_a)(1 + eta eta_a) / 4 in natural coordinates.
-    Eigen::Matrix<double, 2, 4> dn_nat;
-    for (int a = 0; a < 4; ++a) {
-      dn_nat(0, a) = 0.25 * kXiNode[a] * (1.0 + eta * kEtaNode[a]);
-      dn_nat(1, a) = 0.25 * kEtaNode[a] * (1.0 + xi * kXiNode[a]);
-    }
-    // J(i, j) = d x_j / d xi_i; the physical derivatives are J^{-1} dN/dxi.
-    const Eigen::Matrix2d jac = dn_nat * xy;
-    const double det = jac.determinant();
-    if (!(det > 0.0)) return false;
-    const Eigen::Matrix<double, 2, 4> dn = jac.inverse() * dn_nat;
-    Mat38 b = Mat38::Zero();
-    for (int a = 0; a < 4; ++a) {
-      b(0, 2 * a) = dn(0, a);
-      b(1, 2 * a + 1) = dn(1, a);
-      b(2, 2 * a) = dn(1, a);
-      b(2, 2 * a + 1) = dn(0, a);
-    }
+    Mat38 b;
+    double det = 0.0;
+    if (!StrainDisplacement(xy, xi, eta, &b, &det)) return false;
     ke->noalias() += det * (b.transpose() * (d * b));
   }
   // Exactly symmetric in floating point, so that K is (solvers may read one triangle).
@@ -292,6 +304,33 @@ std::vector<std::vector<int>> PlaneStressQ4::Cells() const {
   cells.reserve(elements_.size());
   for (const Element& e : elements_) cells.emplace_back(e.begin(), e.end());
   return cells;
+}
+
+std::vector<CellField> PlaneStressQ4::CellFields(const Vec& u) const {
+  // ElasticityMatrix carries the thickness; the stress is D eps without it.
+  const Eigen::Matrix3d d = ElasticityMatrix(material_) / material_.thickness;
+  CellField sxx{"stress_xx", {}}, syy{"stress_yy", {}}, sxy{"stress_xy", {}};
+  CellField mises{"von_mises_stress", {}};
+  for (const Element& e : elements_) {
+    Eigen::Matrix<double, 4, 2> xy;
+    Eigen::Matrix<double, 8, 1> ue;
+    for (int a = 0; a < 4; ++a) {
+      xy.row(a) = coordinates_.row(e[a]);
+      const Point moved = Position(e[a], u);
+      ue(2 * a) = moved[0] - xy(a, 0);
+      ue(2 * a + 1) = moved[1] - xy(a, 1);
+    }
+    Mat38 b;
+    double det = 0.0;
+    StrainDisplacement(xy, 0.0, 0.0, &b, &det);  // checked at construction
+    const Eigen::Vector3d sigma = d * (b * ue);
+    sxx.values.push_back(sigma[0]);
+    syy.values.push_back(sigma[1]);
+    sxy.values.push_back(sigma[2]);
+    mises.values.push_back(std::sqrt(sigma[0] * sigma[0] - sigma[0] * sigma[1] +
+                                     sigma[1] * sigma[1] + 3.0 * sigma[2] * sigma[2]));
+  }
+  return {sxx, syy, sxy, mises};
 }
 
 }  // namespace cb

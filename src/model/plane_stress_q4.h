@@ -38,6 +38,9 @@ class PlaneStressQ4 final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  // The stress at each element's centre: stress_xx, stress_yy, stress_xy and the von Mises
+  // stress of the plane stress state, sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2).
+  std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<Element>& elements() const { return elements_; }
   const PlaneStressMaterial& material() const { return material_; }
   const SpMat& stiffness() const { return stiffness_; }

@@ -233,4 +233,15 @@ std::vector<std::vector<int>> Truss::Cells() const {
   return cells;
 }
 
+std::vector<CellField> Truss::CellFields(const Vec& u) const {
+  CellField force{"axial_force", {}};
+  CellField stress{"axial_stress", {}};
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const double n = MemberForce(static_cast<int>(k), u);
+    force.values.push_back(n);
+    stress.values.push_back(n / members_[k].area);
+  }
+  return {force, stress};
+}
+
 }  // namespace cb

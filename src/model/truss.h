@@ -36,6 +36,8 @@ class Truss final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  // axial_force N and axial_stress N / A (Biot stress on the reference area) of each member.
+  std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<TrussMember>& members() const { return members_; }
   // The dofs of a member's end nodes, [node_i components, node_j components], -1 if fixed.
   struct MemberDofs {

@@ -2,6 +2,7 @@
 // path the report traces on it.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -33,6 +34,11 @@ struct Problem {
   int control_dof = -1;     // the displacement recorded as control_disp (-1: none)
   std::string control_label;
   Parameters parameters;  // as used to build it
+  // A problem file's own names, which the records use: each node's id (a Gmsh node's tag) and
+  // each obstacle's id, by the model's 0-based index. Empty for a named problem, whose
+  // records number nodes and obstacles from 0.
+  std::vector<std::int64_t> node_ids;
+  std::vector<std::string> obstacle_ids;
 };
 
 using ProblemFactory = std::function<Problem(const std::map<std::string, std::string>&)>;

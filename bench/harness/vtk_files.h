@@ -1,0 +1,40 @@
+// The VTK XML files of the saved states (ASCII, so that they diff and open anywhere): the body
+// at a state as an unstructured grid (.vtu), an obstacle's surface as poly data (.vtp), and
+// the collection (.pvd) that ParaView opens. Each file is written whole or removed: a VTK file
+// cut short is no VTK file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/obstacle_geometry.h"
+#include "problems/problem.h"
+
+namespace cb::harness {
+
+// `text` made safe in an XML attribute or comment.
+std::string XmlEscaped(const std::string& text);
+
+// The body of `problem` at `state` (step `step`): reference points; the elements as cells; as
+// point data the displacement (3 components, for "Warp By Vector") and the sum of the contact
+// reactions at each node; as cell data the body's CellFields; lambda and step as field data.
+void WriteBodyVtu(const std::string& path, const Problem& problem, const State& state, int step);
+
+// An obstacle's surface, its id as field data.
+void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
+                     const std::string& id);
+
+// One dataset of a collection: at time `timestep`, block `part` (named `name`), from `file`
+// (relative to the .pvd); `comment` is written beside it.
+struct PvdDataSet {
+  double timestep = 0.0;
+  int part = 0;
+  std::string name;
+  std::string file;
+  std::string comment;
+};
+
+// The collection, written to a temporary file renamed into place: never half written.
+void WritePvd(const std::string& path, const std::vector<PvdDataSet>& datasets);
+
+}  // namespace cb::harness

@@ -1,0 +1,190 @@
+// What the suite driver says to its user: the version, the suggestions for a mistyped name,
+// the usage only after an argument error, the summary of a fixed-load run and the table that
+// ends a comparison.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "harness/compare_table.h"
+#include "harness/suggest.h"
+
+namespace {
+
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+// `contactbench ARGS` with `streams` ("2>&1", "2>/dev/null", "2>&1 >/dev/null").
+Outcome RunCli(const std::string& args, const std::string& streams = "2>&1") {
+  Outcome out;
+  FILE* pipe = popen((std::string(CONTACTBENCH_BINARY) + " " + args + " " + streams).c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out.output += buffer;
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+const std::filesystem::path kExamples =
+    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+
+std::filesystem::path TempDir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("contactbench_messages_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+TEST(SuggestTest, EditDistanceCountsInsertionsDeletionsAndSubstitutions) {
+  using cb::harness::EditDistance;
+  EXPECT_EQ(EditDistance("", ""), 0u);
+  EXPECT_EQ(EditDistance("abc", ""), 3u);
+  EXPECT_EQ(EditDistance("kitten", "sitting"), 3u);
+  EXPECT_EQ(EditDistance("newton", "newtn"), 1u);
+  EXPECT_EQ(EditDistance("implicit_fb", "implicit-fb"), 1u);
+  EXPECT_EQ(EditDistance("ab", "ba"), 2u);  // a transposition is two edits
+}
+
+TEST(SuggestTest, TheNearestCandidateIsSuggestedOnlyWhenNear) {
+  using cb::harness::ClosestMatch;
+  const std::vector<std::string> solvers = {"newton", "dogleg", "quasi-newton"};
+  EXPECT_EQ(ClosestMatch("newtn", solvers), "newton");
+  EXPECT_EQ(ClosestMatch("quasi", solvers), "quasi-newton");  // the only extension
+  EXPECT_EQ(ClosestMatch("dolgeg", solvers), "dogleg");
+  EXPECT_EQ(ClosestMatch("cholesky", solvers), std::nullopt);
+  EXPECT_EQ(ClosestMatch("", solvers), std::nullopt);
+}
+
+TEST(CliMessagesTest, VersionPrintsTheVersionAndCommit) {
+  const Outcome o = RunCli("--version", "2>/dev/null");
+  EXPECT_EQ(o.status, 0);
+  EXPECT_EQ(o.output.rfind("contactbench 0.", 0), 0u) << o.output;
+  EXPECT_NE(o.output.find("commit"), std::string::npos) << o.output;
+}
+
+TEST(CliMessagesTest, AMistypedNameSuggestsTheClosestValidOne) {
+  const auto dir = TempDir("suggest").string();
+  struct Case {
+    std::string args, suggestion;
+  };
+  const Case cases[] = {
+      {"rn", "did you mean 'run'?"},
+      {"run --problme block --formulation implicit-fb --out " + dir, "did you mean '--problem'?"},
+      {"run --problem blok --formulation implicit-fb --out " + dir, "did you mean 'block'?"},
+      {"run --problem block --formulation implicit_fb --out " + dir, "did you mean 'implicit-fb'?"},
+      {"run --problem block --formulation implicit-fb --solver newtn --out " + dir,
+       "did you mean 'newton'?"},
+      {"compare --problem block --formulations implicit-fb,nonsmoth-fb --out " + dir,
+       "did you mean 'nonsmooth-fb'?"},
+  };
+  for (const Case& c : cases) {
+    const Outcome o = RunCli(c.args);
+    EXPECT_EQ(o.status, 2) << c.args;
+    EXPECT_NE(o.output.find(c.suggestion), std::string::npos) << c.args << "\n" << o.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+TEST(CliMessagesTest, TheUsageFollowsArgumentErrorsOnlyAndGoesToStandardError) {
+  // An argument error: the message and the command's usage, on standard error only.
+  const Outcome argument = RunCli("run --problem block --out x", "2>&1 >/dev/null");
+  EXPECT_EQ(argument.status, 2);
+  EXPECT_NE(argument.output.find("usage: contactbench run"), std::string::npos);
+  EXPECT_EQ(RunCli("run --problem block --out x", "2>/dev/null").output, "");
+  const Outcome nothing = RunCli("", "2>&1 >/dev/null");
+  EXPECT_EQ(nothing.status, 2);
+  EXPECT_NE(nothing.output.find("usage:"), std::string::npos);
+
+  // A data error: a clockwise Gmsh element is reported by its message alone.
+  const auto dir = TempDir("clockwise");
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kExamples / "q4-block-gmsh.json", dir / "q4-block-gmsh.json");
+  std::ifstream mesh_in(kExamples / "q4-block-gmsh.msh");
+  std::string mesh((std::istreambuf_iterator<char>(mesh_in)), std::istreambuf_iterator<char>());
+  const std::string counter_clockwise = "\n6 1 5 6 4\n";
+  ASSERT_NE(mesh.find(counter_clockwise), std::string::npos);
+  mesh.replace(mesh.find(counter_clockwise), counter_clockwise.size(), "\n6 1 4 6 5\n");
+  std::ofstream(dir / "q4-block-gmsh.msh") << mesh;
+  const Outcome data = RunCli("run --problem-file " + (dir / "q4-block-gmsh.json").string() +
+                              " --formulation implicit-fb --out " + (dir / "out").string());
+  EXPECT_EQ(data.status, 2);
+  EXPECT_NE(data.output.find("clockwise"), std::string::npos) << data.output;
+  EXPECT_EQ(data.output.find("usage"), std::string::npos) << data.output;
+  EXPECT_EQ(std::count(data.output.begin(), data.output.end(), '\n'), 1) << data.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliMessagesTest, AFixedLoadRunSummarisesItsIterationsAndTime) {
+  const auto dir = TempDir("fixed_load");
+  const Outcome o = RunCli("run --problem-file " + (kExamples / "lcp-dense-2x2.json").string() +
+                           " --formulation implicit-fb --out " + dir.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find(" iterations, "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(" s) -> "), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("kinks"), std::string::npos) << o.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliMessagesTest, CompareEndsWithATableOfEachFormulationAndStart) {
+  const auto dir = TempDir("compare_table");
+  const Outcome o =
+      RunCli("compare --problem-file " + (kExamples / "lcp-dense-2x2.json").string() +
+             " --formulations implicit-fb,nonsmooth-fb --starts warm,cold --out " + dir.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  const std::size_t header = o.output.find("formulation   start  success  median iterations");
+  ASSERT_NE(header, std::string::npos) << o.output;
+  for (const char* row : {"implicit-fb   warm   1/1", "implicit-fb   cold   1/1",
+                          "nonsmooth-fb  warm   1/1", "nonsmooth-fb  cold   1/1"}) {
+    EXPECT_NE(o.output.find(row, header), std::string::npos) << row << "\n" << o.output;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliMessagesTest, PlotRunsThePlotScriptOnARunsDirectory) {
+  const auto dir = TempDir("plot");
+  ASSERT_EQ(RunCli("run --problem-file " + (kExamples / "truss-2d-bar-wall.json").string() +
+                   " --formulation implicit-fb --out " + dir.string())
+                .status,
+            0);
+  const auto figures = dir / "figures-of-step-14";
+  const Outcome o = RunCli("plot " + dir.string() + " --step 14 --figures " + figures.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  for (const char* figure : {"path.png", "deformed.png", "cost.png", "residual.png"}) {
+    EXPECT_GT(std::filesystem::file_size(figures / figure), 10000u) << figure << "\n" << o.output;
+  }
+  // No directory: an argument error; a directory without records: the script's message.
+  const Outcome missing = RunCli("plot");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("OUT_DIR is required"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("usage: contactbench plot OUT_DIR"), std::string::npos);
+  const Outcome empty = RunCli("plot " + (dir / "vtk").string());
+  EXPECT_EQ(empty.status, 2);
+  EXPECT_NE(empty.output.find("no steps.csv"), std::string::npos) << empty.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareTableTest, MediansOfOddAndEvenCounts) {
+  using cb::harness::Median;
+  EXPECT_EQ(Median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(Median({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_TRUE(std::isnan(Median({})));
+}
+
+TEST(CompareTableTest, ColumnsAreAlignedAndASkippedRunHasNoMedians) {
+  const std::string table = cb::harness::CompareTable(
+      {{"implicit-fb", "warm", "3/4", {2, 5, 3, 9}, {1e-3, 2e-3, 4e-3, 5e-3}},
+       {"ipopt-energy", "cold", "skipped", {}, {}}});
+  EXPECT_EQ(table,
+            "formulation   start  success  median iterations  median time\n"
+            "implicit-fb   warm   3/4      4                  3 ms\n"
+            "ipopt-energy  cold   skipped  -                  -\n");
+}
+
+}  // namespace

@@ -1,0 +1,128 @@
+// The progress line of `contactbench run`: its time estimates, and the line itself as a
+// terminal sees it (the run's standard error on a pseudo-terminal).
+#include "harness/progress.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+using cb::harness::ClockText;
+using cb::harness::TimeText;
+
+TEST(ProgressTest, ClockTextShowsMinutesAndSecondsThenHours) {
+  EXPECT_EQ(ClockText(0.0), "0:00");
+  EXPECT_EQ(ClockText(65.4), "1:05");
+  EXPECT_EQ(ClockText(3600.0 * 2 + 3 * 60 + 9), "2:03:09");
+}
+
+TEST(ProgressTest, TheTimeLeftIsTheElapsedTimePerStepTimesTheStepsLeft) {
+  // 10 s for 2 of 8 steps: 5 s a step, 6 steps left.
+  EXPECT_EQ(TimeText(10.0, 2, 8), "elapsed 0:10, left ~0:30");
+  // Nothing done yet, or everything: no estimate.
+  EXPECT_EQ(TimeText(10.0, 0, 8), "elapsed 0:10");
+  EXPECT_EQ(TimeText(10.0, 8, 8), "elapsed 0:10");
+}
+
+struct Terminal {
+  int status = -1;
+  std::string text;  // what the terminal received
+};
+
+// Runs the suite driver with `args` and its standard error on a pseudo-terminal (standard
+// output to /dev/null), and returns what the terminal received.
+Terminal RunOnTerminal(const std::vector<std::string>& args) {
+  Terminal out;
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) return out;
+  const std::string slave_name = ptsname(master);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setsid();
+    const int slave = open(slave_name.c_str(), O_RDWR);
+    const int null = open("/dev/null", O_WRONLY);
+    if (slave < 0 || null < 0) _exit(127);
+    dup2(slave, STDERR_FILENO);
+    dup2(null, STDOUT_FILENO);
+    std::vector<char*> argv{const_cast<char*>(CONTACTBENCH_BINARY)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(CONTACTBENCH_BINARY, argv.data());
+    _exit(127);
+  }
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(master, buffer, sizeof buffer);
+    if (n > 0) {
+      out.text.append(buffer, static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      break;  // EIO: every holder of the terminal's other side has closed it
+    }
+  }
+  close(master);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+std::string Example(const std::string& name) {
+  return (std::filesystem::path(__FILE__).parent_path().parent_path() / "examples" / name).string();
+}
+
+TEST(ProgressTest, OnATerminalEveryRewriteClearsTheLineAndTheSummaryStartsALine) {
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_progress_terminal";
+  std::filesystem::remove_all(dir);
+  const Terminal t = RunOnTerminal({"run", "--problem-file", Example("truss-2d-bar-wall.json"),
+                                    "--formulation", "implicit-fb", "--out", dir.string()});
+  ASSERT_EQ(t.status, 0) << t.text;
+  // Each rewrite is "\r" + text + erase-to-end-of-line, so no rest of a longer line stays.
+  std::size_t rewrites = 0;
+  for (std::size_t at = t.text.find('\r'); at != std::string::npos;
+       at = t.text.find('\r', at + 1)) {
+    const std::size_t end = t.text.find_first_of("\r\n", at + 1);
+    if (end == at + 1) continue;  // the terminal's own "\r\n" for a newline
+    ++rewrites;
+    const std::string line = t.text.substr(at + 1, end - at - 1);
+    EXPECT_EQ(line.rfind("\x1b[K"), line.size() - 3) << line;
+    EXPECT_NE(line.find("elapsed "), std::string::npos) << line;
+  }
+  EXPECT_GE(rewrites, 40u) << t.text;  // one per step at least
+  EXPECT_NE(t.text.find(", left ~"), std::string::npos) << t.text;
+  // The summary is a line of its own: a newline ends the progress line before it.
+  const std::size_t summary = t.text.find("truss-2d-bar-wall implicit-fb: ");
+  ASSERT_NE(summary, std::string::npos) << t.text;
+  ASSERT_GT(summary, 0u);
+  EXPECT_EQ(t.text[summary - 1], '\n') << t.text;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ProgressTest, OffATerminalNothingButTheSummaryIsShown) {
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_progress_pipe";
+  std::filesystem::remove_all(dir);
+  const std::string command = std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
+                              Example("truss-2d-bar-wall.json") +
+                              " --formulation implicit-fb --out " + dir.string() + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string text;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
+  EXPECT_EQ(pclose(pipe), 0);
+  EXPECT_EQ(text.find('\r'), std::string::npos) << text;
+  EXPECT_EQ(text.find('\x1b'), std::string::npos) << text;
+  EXPECT_EQ(text.rfind("truss-2d-bar-wall implicit-fb: ", 0), 0u) << text;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
