@@ -14,6 +14,11 @@ namespace {
 // VTK cell types of the legacy/XML formats.
 constexpr int kVtkLine = 3;
 constexpr int kVtkQuad = 9;
+constexpr int kVtkHexahedron = 12;
+
+int VtkCellType(std::size_t nodes) {
+  return nodes == 2 ? kVtkLine : nodes == 8 ? kVtkHexahedron : kVtkQuad;
+}
 
 // Text in an XML attribute or comment.
 std::string XmlEscaped(const std::string& text) {
@@ -50,6 +55,19 @@ void CloseOrRemove(std::ofstream& out, const std::string& path) {
   std::error_code ec;
   std::filesystem::remove(path, ec);
   throw WriteError(path, "the write failed (disk full?); the file was removed");
+}
+
+// The body's per-cell quantities (a hexahedral solid's von Mises stress), one value per cell.
+void WriteCellFields(std::ofstream& out, const std::vector<CellField>& fields) {
+  if (fields.empty()) return;
+  out << "      <CellData>\n";
+  for (const CellField& field : fields) {
+    out << "        <DataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name)
+        << "\" format=\"ascii\">\n";
+    for (double v : field.values) out << "          " << v << '\n';
+    out << "        </DataArray>\n";
+  }
+  out << "      </CellData>\n";
 }
 
 }  // namespace
@@ -94,7 +112,8 @@ void SnapshotWriter::Save(const State& state, int step, const std::string& label
 
 // VTK XML unstructured grid (ASCII): reference points, the elements as cells, and as point
 // data the displacement (3 components, so ParaView's "Warp By Vector" applies) and the sum of
-// the contact reactions at each node; the load parameter and step as field data.
+// the contact reactions at each node; as cell data what the body provides per cell; the load
+// parameter and step as field data.
 void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int step) const {
   const BodyContactModel& model = *problem_.body;
   const ElasticBody& body = model.body();
@@ -136,7 +155,7 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   for (const auto& cell : cells) out << ' ' << (offset += static_cast<int>(cell.size()));
   out << "\n        </DataArray>\n"
       << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ";
-  for (const auto& cell : cells) out << ' ' << (cell.size() == 2 ? kVtkLine : kVtkQuad);
+  for (const auto& cell : cells) out << ' ' << VtkCellType(cell.size());
   out << "\n        </DataArray>\n      </Cells>\n"
       << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
       << "        <DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" "
@@ -151,8 +170,9 @@ void SnapshotWriter::WriteVtu(const std::string& path, const State& state, int s
   out << "        </DataArray>\n"
       << "        <DataArray type=\"Float64\" Name=\"contact_reaction\" format=\"ascii\">\n";
   for (double r : reaction) out << "          " << r << '\n';
-  out << "        </DataArray>\n      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
-      << "</VTKFile>\n";
+  out << "        </DataArray>\n      </PointData>\n";
+  WriteCellFields(out, body.CellFields(state.u));
+  out << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   CloseOrRemove(out, path);
 }
 

@@ -3,6 +3,7 @@
 // free dof (an index into u) or fixed at zero (a support).
 #pragma once
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,12 @@ class DofMap {
   std::vector<int> map_;
 };
 
+// A named value per element (per cell of Cells()), for output.
+struct CellField {
+  std::string name;
+  std::vector<double> values;
+};
+
 class ElasticBody {
  public:
   virtual ~ElasticBody() = default;
@@ -48,8 +55,11 @@ class ElasticBody {
   virtual std::vector<std::pair<int, int>> StiffnessEntries() const = 0;
   virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const = 0;
 
-  // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral; VTK cells).
+  // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral, 8: a
+  // hexahedron; VTK cells).
   virtual std::vector<std::vector<int>> Cells() const = 0;
+  // Per-cell quantities at u (e.g. a stress measure), for output; none by default.
+  virtual std::vector<CellField> CellFields(const Vec& /*u*/) const { return {}; }
 
   int num_dofs() const { return dofs().num_dofs(); }
   // Current position X + u of a node; fixed components stay at X.

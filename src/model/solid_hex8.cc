@@ -160,17 +160,10 @@ SolidHex8::SolidHex8(Mat coordinates, std::vector<Element> elements, const Solid
         if (el[a] == el[b]) ThrowElement(e, "repeats node " + std::to_string(el[a]));
       }
     }
-    Mat83 xyz;
-    for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates_.row(el[a]);
-    for (int gp = 0; gp < 8; ++gp) {
-      double xi, eta, zeta, det;
-      GaussPoint(gp, &xi, &eta, &zeta);
-      Mat83 dn;
-      if (!ShapeGradients(xyz, xi, eta, zeta, &dn, &det)) {
-        ThrowElement(e,
-                     "has a non-positive Jacobian (flat, or nodes not in the order 0-1-2-3 "
-                     "counter-clockwise below 4-5-6-7)");
-      }
+    if (!HasPositiveJacobian(coordinates_, el)) {
+      ThrowElement(e,
+                   "has a non-positive Jacobian (flat, or nodes not in the order 0-1-2-3 "
+                   "counter-clockwise below 4-5-6-7)");
     }
   }
 
@@ -216,6 +209,18 @@ SolidHex8::SolidHex8(Mat coordinates, std::vector<Element> elements, const Solid
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + inner.size(), 0.0);
   // Small deformation: K once, the tangent at u = 0.
   if (is_linear()) AssembleTangent(Vec::Zero(d), pattern_.valuePtr());
+}
+
+bool SolidHex8::HasPositiveJacobian(const Mat& coordinates, const Element& element) {
+  Mat83 xyz;
+  for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates.row(element[a]);
+  for (int gp = 0; gp < 8; ++gp) {
+    double xi, eta, zeta, det;
+    GaussPoint(gp, &xi, &eta, &zeta);
+    Mat83 dn;
+    if (!ShapeGradients(xyz, xi, eta, zeta, &dn, &det)) return false;
+  }
+  return true;
 }
 
 Eigen::Matrix<double, 8, 3> SolidHex8::ElementDisplacements(std::size_t element,
@@ -338,6 +343,10 @@ std::vector<std::vector<int>> SolidHex8::Cells() const {
   cells.reserve(elements_.size());
   for (const Element& e : elements_) cells.emplace_back(e.begin(), e.end());
   return cells;
+}
+
+std::vector<CellField> SolidHex8::CellFields(const Vec& u) const {
+  return {{"von_mises", VonMisesStress(u)}};
 }
 
 // A dead traction t on the bilinear face x(xi, eta) = sum_a N_a x_a: the consistent nodal

@@ -32,6 +32,10 @@ class SolidHex8 final : public ElasticBody {
   SolidHex8(Mat coordinates, std::vector<Element> elements, const SolidMaterial& material,
             SolidKinematics kinematics, const std::vector<bool>& fixed = {});
 
+  // True when the element's Jacobian is positive at every Gauss point, as the constructor
+  // requires (node ids must be valid rows of `coordinates`).
+  static bool HasPositiveJacobian(const Mat& coordinates, const Element& element);
+
   int dim() const override { return 3; }
   int num_nodes() const override { return static_cast<int>(coordinates_.rows()); }
   const DofMap& dofs() const override { return dofs_; }
@@ -47,6 +51,8 @@ class SolidHex8 final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  // "von_mises": VonMisesStress(u).
+  std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<Element>& elements() const { return elements_; }
   const SolidMaterial& material() const { return material_; }
   SolidKinematics kinematics() const { return kinematics_; }
