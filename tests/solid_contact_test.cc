@@ -1,6 +1,7 @@
 // Rigid obstacles in 3-D (half-space, sphere, cylinder; solid and cavity) and a hexahedral
-// solid against them: signed distances, gradients and curvature terms against finite
-// differences.
+// solid against them: the cylinder's signed distance, and the gap Jacobian and curvature terms
+// of the solid against all of them by finite differences (the obstacles' own derivatives are
+// checked with the others in model_test.cc).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +20,6 @@
 namespace cb {
 namespace {
 
-using fd_check::FiniteDifferenceGradient;
 using fd_check::FiniteDifferenceJacobian;
 
 constexpr double kFdTol = 1e-6;
@@ -47,28 +47,6 @@ std::vector<std::shared_ptr<const Obstacle>> Obstacles3D() {
       std::make_shared<Cylinder>(P3(0.5, 0.5, 0.5), P3(0.0, 0.0, 3.0), 2.0,
                                  Cylinder::Side::kCavity),
   };
-}
-
-TEST(SolidContactTest, ObstacleGradientAndHessianMatchFiniteDifferences) {
-  std::mt19937 rng(31);
-  for (const auto& obstacle : Obstacles3D()) {
-    SCOPED_TRACE(obstacle->Describe());
-    for (int trial = 0; trial < 5; ++trial) {
-      const Vec x = RandomVec(3, 2.0, &rng) + Vec::Constant(3, 0.7);
-      auto value = [&](const Vec& y) { return obstacle->Value(Point(y)); };
-      auto gradient = [&](const Vec& y) { return Vec(obstacle->Gradient(Point(y))); };
-      const Vec grad = obstacle->Gradient(Point(x));
-      EXPECT_NEAR(grad.norm(), 1.0, 1e-14);
-      EXPECT_DERIVATIVE_NEAR(grad, FiniteDifferenceGradient(value, x), kFdTol);
-      const Mat hess = obstacle->Hessian(Point(x));
-      if (obstacle->is_curved()) {
-        EXPECT_DERIVATIVE_NEAR(hess, FiniteDifferenceJacobian(gradient, x), kFdTol);
-        EXPECT_LT((hess - hess.transpose()).norm(), 1e-14);
-      } else {
-        EXPECT_EQ(hess.norm(), 0.0);
-      }
-    }
-  }
 }
 
 TEST(SolidContactTest, CylinderIsASignedDistancePositiveInside) {

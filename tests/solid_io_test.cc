@@ -2,7 +2,6 @@
 // its mesh hex-block.msh committed beside it) run end to end by `contactbench run`, and the
 // refusal of other 3-D element types.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include "io/gmsh.h"
 #include "io/problem_file.h"
 #include "model/solid_hex8.h"
+#include "run_contactbench.h"
 
 namespace cb {
 namespace {
@@ -46,17 +46,10 @@ TEST(SolidIoTest, GmshHexahedralMeshReadsWithItsGroups) {
 TEST(SolidIoTest, GmshHexahedralBlockRunsEndToEnd) {
   const auto out = std::filesystem::temp_directory_path() / "contactbench_solid_io_hex_block";
   std::filesystem::remove_all(out);
-  const std::string command = std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
-                              (kData / "hex-block.json").string() +
-                              " --formulation implicit-fb --out " + out.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  char buffer[4096];
-  std::string output;
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int raw = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(raw));
-  ASSERT_EQ(WEXITSTATUS(raw), 0) << output;
+  const testing_support::CliOutcome run =
+      testing_support::RunContactbench("run --problem-file " + (kData / "hex-block.json").string() +
+                                       " --formulation implicit-fb --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.output;
 
   std::ifstream solution(out / "solution.csv");
   std::string line;

@@ -223,6 +223,12 @@ bool SolidHex8::HasPositiveJacobian(const Mat& coordinates, const Element& eleme
   return true;
 }
 
+Eigen::Matrix<double, 8, 3> SolidHex8::ElementCoordinates(std::size_t element) const {
+  Mat83 xyz;
+  for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates_.row(elements_[element][a]);
+  return xyz;
+}
+
 Eigen::Matrix<double, 8, 3> SolidHex8::ElementDisplacements(std::size_t element,
                                                             const Vec& u) const {
   Mat83 ue;
@@ -270,8 +276,7 @@ double SolidHex8::Energy(const Vec& u) const {
   if (is_linear()) return 0.5 * u.dot(pattern_ * u);
   double energy = 0.0;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    Mat83 xyz;
-    for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates_.row(elements_[e][a]);
+    const Mat83 xyz = ElementCoordinates(e);
     ElementResult result;
     if (!NeoHookeanElement(xyz, ElementDisplacements(e, u), lame_lambda_, shear_modulus_, false,
                            &result)) {
@@ -290,8 +295,7 @@ void SolidHex8::InternalForce(const Vec& u, Vec* force) const {
   }
   force->setZero(num_dofs());
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    Mat83 xyz;
-    for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates_.row(elements_[e][a]);
+    const Mat83 xyz = ElementCoordinates(e);
     ElementResult result;
     if (!NeoHookeanElement(xyz, ElementDisplacements(e, u), lame_lambda_, shear_modulus_, false,
                            &result)) {
@@ -391,8 +395,7 @@ std::vector<double> SolidHex8::VonMisesStress(const Vec& u) const {
   out.reserve(elements_.size());
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    Mat83 xyz;
-    for (int a = 0; a < 8; ++a) xyz.row(a) = coordinates_.row(elements_[e][a]);
+    const Mat83 xyz = ElementCoordinates(e);
     Mat83 dn;
     double det0;
     ShapeGradients(xyz, 0.0, 0.0, 0.0, &dn, &det0);

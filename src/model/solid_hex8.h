@@ -66,6 +66,8 @@ class SolidHex8 final : public ElasticBody {
   std::vector<double> VonMisesStress(const Vec& u) const;
 
  private:
+  // Element nodal reference coordinates (8 x 3).
+  Eigen::Matrix<double, 8, 3> ElementCoordinates(std::size_t element) const;
   // Element nodal displacements (8 x 3), zero on supported components.
   Eigen::Matrix<double, 8, 3> ElementDisplacements(std::size_t element, const Vec& u) const;
   // Adds the element tangents at u into `values` (pattern_'s storage order).
