@@ -470,6 +470,31 @@ Problem ReadTruss(const JsonNode& root, const std::string& file,
   return problem;
 }
 
+// The isotropic "material": {"E": > 0, "nu": in (-1, 0.5)} of the continuum bodies.
+void ReadIsotropic(const JsonNode& root, double* youngs_modulus, double* poisson_ratio) {
+  const JsonNode mat = root.Field("material");
+  mat.ExpectObject({"E", "nu"});
+  *youngs_modulus = mat.Field("E").Positive();
+  const JsonNode nu = mat.Field("nu");
+  *poisson_ratio = nu.Number();
+  if (!(*poisson_ratio > -1.0 && *poisson_ratio < 0.5)) {
+    nu.Fail("must be in (-1, 0.5), got " + Describe(*poisson_ratio));
+  }
+}
+
+// "mesh": {"file": F}, instead of inline "nodes" and "elements": F read relative to the
+// problem file's directory.
+void OpenMesh(const JsonNode& root, const std::string& directory, BodyInput* in) {
+  for (const char* key : {"nodes", "elements"}) {
+    if (root.Has(key)) root.Field(key).Fail("give either \"mesh\" or \"nodes\" and \"elements\"");
+  }
+  const JsonNode mesh = root.Field("mesh");
+  mesh.ExpectObject({"file"});
+  const std::filesystem::path relative = mesh.Field("file").String();
+  in->mesh_file = (std::filesystem::path(directory) / relative).lexically_normal().string();
+  in->mesh = ReadGmsh(in->mesh_file);
+}
+
 // A Q4 element's corners must turn left at every corner: counter-clockwise and strictly convex
 // (then the bilinear map's Jacobian is positive everywhere in the element).
 std::string ElementProblem(const Mat& xy, const PlaneStressQ4::Element& e) {
@@ -510,27 +535,13 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
   }
   PlaneStressMaterial material;
   material.thickness = root.Field("thickness").Positive();
-  const JsonNode mat = root.Field("material");
-  mat.ExpectObject({"E", "nu"});
-  material.youngs_modulus = mat.Field("E").Positive();
-  const JsonNode nu = mat.Field("nu");
-  material.poisson_ratio = nu.Number();
-  if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-    nu.Fail("must be in (-1, 0.5), got " + Describe(material.poisson_ratio));
-  }
+  ReadIsotropic(root, &material.youngs_modulus, &material.poisson_ratio);
 
   BodyInput in(root, 2);
   std::vector<PlaneStressQ4::Element> elements;
   std::vector<std::int64_t> element_tags;  // Gmsh tags, for element_sides
   if (root.Has("mesh")) {
-    for (const char* key : {"nodes", "elements"}) {
-      if (root.Has(key)) root.Field(key).Fail("give either \"mesh\" or \"nodes\" and \"elements\"");
-    }
-    const JsonNode mesh = root.Field("mesh");
-    mesh.ExpectObject({"file"});
-    const std::filesystem::path relative = mesh.Field("file").String();
-    in.mesh_file = (std::filesystem::path(directory) / relative).lexically_normal().string();
-    in.mesh = ReadGmsh(in.mesh_file);
+    OpenMesh(root, directory, &in);
     const GmshMesh& g = *in.mesh;
     in.nodes.coordinates.resize(static_cast<Eigen::Index>(g.node_tags.size()), 2);
     for (std::size_t k = 0; k < g.node_tags.size(); ++k) {
@@ -685,14 +696,7 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
     }
   }
   SolidMaterial material;
-  const JsonNode mat = root.Field("material");
-  mat.ExpectObject({"E", "nu"});
-  material.youngs_modulus = mat.Field("E").Positive();
-  const JsonNode nu = mat.Field("nu");
-  material.poisson_ratio = nu.Number();
-  if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-    nu.Fail("must be in (-1, 0.5), got " + Describe(material.poisson_ratio));
-  }
+  ReadIsotropic(root, &material.youngs_modulus, &material.poisson_ratio);
 
   BodyInput in(root, 3);
   std::vector<SolidHex8::Element> elements;
@@ -700,14 +704,7 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
       "non-positive Jacobian: list the nodes 0-1-2-3 counter-clockwise (seen "
       "from the top face) below 4-5-6-7, node 4 + k above node k";
   if (root.Has("mesh")) {
-    for (const char* key : {"nodes", "elements"}) {
-      if (root.Has(key)) root.Field(key).Fail("give either \"mesh\" or \"nodes\" and \"elements\"");
-    }
-    const JsonNode mesh = root.Field("mesh");
-    mesh.ExpectObject({"file"});
-    const std::filesystem::path relative = mesh.Field("file").String();
-    in.mesh_file = (std::filesystem::path(directory) / relative).lexically_normal().string();
-    in.mesh = ReadGmsh(in.mesh_file);
+    OpenMesh(root, directory, &in);
     const GmshMesh& g = *in.mesh;
     in.nodes.coordinates = g.coordinates;
     for (std::size_t k = 0; k < g.node_tags.size(); ++k) {
