@@ -140,6 +140,10 @@ std::vector<std::shared_ptr<const Obstacle>> AllObstacles() {
       std::make_shared<Ball>(MakePoint({0.4, -0.3}), 1.5, Ball::Side::kCavity),
       std::make_shared<Ball>(MakePoint({-0.2, 0.1, 0.5}), 2.0, Ball::Side::kSolid),
       std::make_shared<Ball>(MakePoint({-0.2, 0.1, 0.5}), 2.0, Ball::Side::kCavity),
+      std::make_shared<Cylinder>(MakePoint({0.3, -1.0, -1.5}), MakePoint({1.0, 0.5, 0.2}), 1.4,
+                                 Cylinder::Side::kSolid),
+      std::make_shared<Cylinder>(MakePoint({0.5, 0.5, 0.5}), MakePoint({0.0, 0.0, 3.0}), 2.0,
+                                 Cylinder::Side::kCavity),
   };
 }
 

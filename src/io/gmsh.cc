@@ -150,6 +150,8 @@ int NodesOf(std::int64_t type) {
       return 2;
     case 3:
       return 4;
+    case 5:
+      return 8;
     case 15:
       return 1;
     default:
@@ -192,6 +194,7 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
   // Line and point elements by their entity, resolved to groups at the end.
   std::map<std::pair<int, int>, std::vector<std::array<std::int64_t, 2>>> entity_edges;
   std::map<std::pair<int, int>, std::vector<std::int64_t>> entity_nodes;
+  std::map<std::pair<int, int>, std::vector<std::array<std::int64_t, 4>>> entity_faces;
 
   while (!c.done()) {
     const Token section = c.Next("a section");
@@ -281,6 +284,12 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
         const int entity = static_cast<int>(c.Int("an entity tag"));
         const std::int64_t type = c.Int("an element type");
         const int per = NodesOf(type);
+        if (per == 0 && dim == 3) {
+          c.Fail("element type " + std::to_string(type) + " (" + ElementName(type) +
+                 ") is not supported: a 3-D body must be 8-node hexahedra (type 5); get them "
+                 "with transfinite volumes (Transfinite Volume{..}; Recombine Surface{..}; "
+                 "Recombine Volume{..}) and write with gmsh -3 -format msh41");
+        }
         if (per == 0) {
           c.Fail("element type " + std::to_string(type) + " (" + ElementName(type) +
                  ") is not supported: only 4-node quadrangles (type 3) make the body, with "
@@ -289,7 +298,7 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
         const std::int64_t n = c.Count("the number of elements in the block");
         for (std::int64_t k = 0; k < n; ++k) {
           const std::int64_t tag = c.Int("an element tag");
-          std::array<std::int64_t, 4> nodes{};
+          std::array<std::int64_t, 8> nodes{};
           for (int i = 0; i < per; ++i) {
             nodes[i] = c.Int("a node tag");
             if (!node_index.count(nodes[i])) {
@@ -297,9 +306,13 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
                      ", which is not in $Nodes");
             }
           }
-          if (type == 3) {
+          if (type == 5) {
+            mesh.hex_tags.push_back(tag);
+            mesh.hexes.push_back(nodes);
+          } else if (type == 3) {
             mesh.quad_tags.push_back(tag);
-            mesh.quads.push_back(nodes);
+            mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+            entity_faces[{dim, entity}].push_back(mesh.quads.back());
           } else if (type == 1) {
             entity_edges[{dim, entity}].push_back({nodes[0], nodes[1]});
             entity_nodes[{dim, entity}].push_back(nodes[0]);
@@ -338,6 +351,12 @@ GmshMesh ParseGmsh(const std::string& text, const std::string& file) {
       auto n = entity_nodes.find(entity);
       if (n != entity_nodes.end())
         g.nodes.insert(g.nodes.end(), n->second.begin(), n->second.end());
+      // In a 3-D mesh the quadrangles are boundary faces; in a plane mesh they are the body.
+      auto f = entity_faces.find(entity);
+      if (!mesh.hexes.empty() && f != entity_faces.end()) {
+        g.faces.insert(g.faces.end(), f->second.begin(), f->second.end());
+        for (const auto& face : f->second) g.nodes.insert(g.nodes.end(), face.begin(), face.end());
+      }
     }
     std::sort(g.nodes.begin(), g.nodes.end());
     g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());

@@ -1,7 +1,9 @@
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -15,6 +17,7 @@
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
 #include "model/rigid_motion.h"
+#include "model/solid_hex8.h"
 #include "model/truss.h"
 
 namespace cb::io {
@@ -181,6 +184,20 @@ struct Obstacles {
   }
 };
 
+// A curved obstacle's "side": "solid" (default) or "cavity".
+Ball::Side ReadSide(const JsonNode& item) {
+  Ball::Side side = Ball::Side::kSolid;
+  if (auto s = item.Optional("side")) {
+    const std::string text = s->String();
+    if (text == "cavity") {
+      side = Ball::Side::kCavity;
+    } else if (text != "solid") {
+      s->Fail("must be \"solid\" or \"cavity\", got \"" + text + "\"");
+    }
+  }
+  return side;
+}
+
 Obstacles ReadObstacles(const JsonNode& root, int dim) {
   Obstacles o;
   auto list = root.Optional("obstacles");
@@ -197,18 +214,17 @@ Obstacles ReadObstacles(const JsonNode& root, int dim) {
       item.ExpectObject({"id", "type", "centre", "radius", "side"});
       const Point centre = item.Field("centre").Vector(dim);
       const double radius = item.Field("radius").Positive();
-      Ball::Side side = Ball::Side::kSolid;
-      if (auto s = item.Optional("side")) {
-        const std::string text = s->String();
-        if (text == "cavity") {
-          side = Ball::Side::kCavity;
-        } else if (text != "solid") {
-          s->Fail("must be \"solid\" or \"cavity\", got \"" + text + "\"");
-        }
-      }
-      o.list.push_back(std::make_shared<Ball>(centre, radius, side));
+      o.list.push_back(std::make_shared<Ball>(centre, radius, ReadSide(item)));
+    } else if (type == "cylinder" && dim == 3) {
+      item.ExpectObject({"id", "type", "point", "axis", "radius", "side"});
+      const Point point = item.Field("point").Vector(3);
+      const Point axis = item.Field("axis").Vector(3);
+      if (!(axis.norm() > 0.0)) item.Field("axis").Fail("must not be the zero vector");
+      const double radius = item.Field("radius").Positive();
+      o.list.push_back(std::make_shared<Cylinder>(point, axis, radius, ReadSide(item)));
     } else {
-      item.Field("type").Fail("must be \"half-space\" or \"ball\", got \"" + type + "\"");
+      item.Field("type").Fail(std::string("must be \"half-space\", \"ball\"") +
+                              (dim == 3 ? " or \"cylinder\"" : "") + ", got \"" + type + "\"");
     }
     const JsonNode id = item.Field("id");
     const std::string text = id.String();
@@ -239,19 +255,23 @@ class BodyInput {
     if (!mesh) ref.Fail("groups name physical groups of a Gmsh mesh; this problem has no \"mesh\"");
     const std::string name = ref.String();
     const GmshMesh::Group* found = nullptr;
+    // Groups of lower dimension than the body: points and curves (plane), also surfaces (3-D).
+    const int top = dim_ - 1;
     for (const auto& g : mesh->groups) {
-      if (g.name == name && g.dim <= 1 && (found == nullptr || g.dim > found->dim)) found = &g;
+      if (g.name == name && g.dim <= top && (found == nullptr || g.dim > found->dim)) found = &g;
     }
     if (found == nullptr) {
       std::string known;
       for (const auto& g : mesh->groups) {
-        if (g.dim <= 1) known += (known.empty() ? "" : ", ") + g.name;
+        if (g.dim <= top) known += (known.empty() ? "" : ", ") + g.name;
       }
-      ref.Fail("no 0-D or 1-D physical group \"" + name + "\" in " + mesh_file +
+      ref.Fail(std::string(top == 1 ? "no 0-D or 1-D" : "no 0-D, 1-D or 2-D") +
+               " physical group \"" + name + "\" in " + mesh_file +
                " (defined: " + (known.empty() ? "none" : known) + ")");
     }
     if (found->nodes.empty()) {
-      ref.Fail("physical group \"" + name + "\" holds no line or point elements");
+      ref.Fail("physical group \"" + name + "\" holds no " +
+               (top == 1 ? "line or point" : "quadrangle, line or point") + " elements");
     }
     return *found;
   }
@@ -480,6 +500,30 @@ Problem ReadTruss(const JsonNode& root, const std::string& file,
 
 // The shortest side a Q4 element may have, relative to its longest.
 constexpr double kDegenerateEdgeRatio = 1e-8;
+// The isotropic "material": {"E": > 0, "nu": in (-1, 0.5)} of the continuum bodies.
+void ReadIsotropic(const JsonNode& root, double* youngs_modulus, double* poisson_ratio) {
+  const JsonNode mat = root.Field("material");
+  mat.ExpectObject({"E", "nu"});
+  *youngs_modulus = mat.Field("E").Positive();
+  const JsonNode nu = mat.Field("nu");
+  *poisson_ratio = nu.Number();
+  if (!(*poisson_ratio > -1.0 && *poisson_ratio < 0.5)) {
+    nu.Fail("must be in (-1, 0.5), got " + Describe(*poisson_ratio));
+  }
+}
+
+// "mesh": {"file": F}, instead of inline "nodes" and "elements": F read relative to the
+// problem file's directory.
+void OpenMesh(const JsonNode& root, const std::string& directory, BodyInput* in) {
+  for (const char* key : {"nodes", "elements"}) {
+    if (root.Has(key)) root.Field(key).Fail("give either \"mesh\" or \"nodes\" and \"elements\"");
+  }
+  const JsonNode mesh = root.Field("mesh");
+  mesh.ExpectObject({"file"});
+  const std::filesystem::path relative = mesh.Field("file").String();
+  in->mesh_file = (std::filesystem::path(directory) / relative).lexically_normal().string();
+  in->mesh = ReadGmsh(in->mesh_file);
+}
 
 // A Q4 element's corners must turn left at every corner: counter-clockwise and strictly convex
 // (then the bilinear map's Jacobian is positive everywhere in the element).
@@ -538,27 +582,13 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
   }
   PlaneStressMaterial material;
   material.thickness = root.Field("thickness").Positive();
-  const JsonNode mat = root.Field("material");
-  mat.ExpectObject({"E", "nu"});
-  material.youngs_modulus = mat.Field("E").Positive();
-  const JsonNode nu = mat.Field("nu");
-  material.poisson_ratio = nu.Number();
-  if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-    nu.Fail("must be in (-1, 0.5), got " + Describe(material.poisson_ratio));
-  }
+  ReadIsotropic(root, &material.youngs_modulus, &material.poisson_ratio);
 
   BodyInput in(root, 2);
   std::vector<PlaneStressQ4::Element> elements;
   std::vector<std::int64_t> element_tags;  // Gmsh tags, for element_sides
   if (root.Has("mesh")) {
-    for (const char* key : {"nodes", "elements"}) {
-      if (root.Has(key)) root.Field(key).Fail("give either \"mesh\" or \"nodes\" and \"elements\"");
-    }
-    const JsonNode mesh = root.Field("mesh");
-    mesh.ExpectObject({"file"});
-    const std::filesystem::path relative = mesh.Field("file").String();
-    in.mesh_file = (std::filesystem::path(directory) / relative).lexically_normal().string();
-    in.mesh = ReadGmsh(in.mesh_file);
+    OpenMesh(root, directory, &in);
     const GmshMesh& g = *in.mesh;
     in.nodes.coordinates.resize(static_cast<Eigen::Index>(g.node_tags.size()), 2);
     for (std::size_t k = 0; k < g.node_tags.size(); ++k) {
@@ -571,6 +601,9 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
       in.nodes.coordinates.row(row) = g.coordinates.block(row, 0, 1, 2);
       in.nodes.index[g.node_tags[k]] = static_cast<int>(k);
       in.nodes.ids.push_back(g.node_tags[k]);
+    }
+    if (!g.hexes.empty()) {
+      throw InputError(in.mesh_file, "", "a 3-D mesh of hexahedra: use \"kind\": \"solid-hex8\"");
     }
     if (const auto pair = CoincidentNodes(in.nodes.coordinates)) {
       throw InputError(in.mesh_file, "node " + std::to_string(in.nodes.ids[pair->second]),
@@ -687,6 +720,142 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
   return problem;
 }
 
+// --- hexahedral solids --------------------------------------------------------------------
+
+// The six faces of a hexahedron (VTK node order), each listed around its outward normal.
+constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+std::array<int, 4> SortedFace(std::array<int, 4> face) {
+  std::sort(face.begin(), face.end());
+  return face;
+}
+
+Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::string& directory,
+                      const std::map<std::string, std::string>& settings) {
+  root.ExpectObject({"kind",       "version",      "name",         "description", "units",
+                     "source",     "length_scale", "force_scale",  "analysis",    "load",
+                     "arc_length", "steps",        "control",      "deformation", "material",
+                     "nodes",      "elements",     "mesh",         "supports",    "loads",
+                     "tractions",  "obstacles",    "contact_pairs"});
+  SolidKinematics kinematics = SolidKinematics::kSmallStrain;
+  if (auto d = root.Optional("deformation")) {
+    if (d->String() == "large") {
+      kinematics = SolidKinematics::kLargeStrain;
+    } else if (d->String() != "small") {
+      d->Fail("must be \"small\" or \"large\", got \"" + d->String() + "\"");
+    }
+  }
+  SolidMaterial material;
+  ReadIsotropic(root, &material.youngs_modulus, &material.poisson_ratio);
+
+  BodyInput in(root, 3);
+  std::vector<SolidHex8::Element> elements;
+  const char* kOrder =
+      "non-positive Jacobian: list the nodes 0-1-2-3 counter-clockwise (seen "
+      "from the top face) below 4-5-6-7, node 4 + k above node k";
+  if (root.Has("mesh")) {
+    OpenMesh(root, directory, &in);
+    const GmshMesh& g = *in.mesh;
+    in.nodes.coordinates = g.coordinates;
+    for (std::size_t k = 0; k < g.node_tags.size(); ++k) {
+      in.nodes.index[g.node_tags[k]] = static_cast<int>(k);
+      in.nodes.ids.push_back(g.node_tags[k]);
+    }
+    if (g.hexes.empty()) {
+      throw InputError(in.mesh_file, "",
+                       "no 8-node hexahedra (element type 5) in the mesh: make them with "
+                       "transfinite, recombined volumes and write with gmsh -3 -format msh41");
+    }
+    for (std::size_t k = 0; k < g.hexes.size(); ++k) {
+      SolidHex8::Element e;
+      for (int i = 0; i < 8; ++i) e[i] = in.nodes.index.at(g.hexes[k][i]);
+      if (!SolidHex8::HasPositiveJacobian(in.nodes.coordinates, e)) {
+        throw InputError(in.mesh_file, "element " + std::to_string(g.hex_tags[k]), kOrder);
+      }
+      elements.push_back(e);
+    }
+  } else {
+    in.nodes = ReadNodes(root.Field("nodes"), 3);
+    const JsonNode list = root.Field("elements");
+    if (list.Size() == 0) list.Fail("must list at least one element");
+    for (const JsonNode& item : list.Items()) {
+      item.ExpectObject({"nodes"});
+      const JsonNode ids = item.Field("nodes");
+      if (ids.Size() != 8) {
+        ids.Fail("a hexahedron has 8 nodes, got " + std::to_string(ids.Size()));
+      }
+      SolidHex8::Element e;
+      for (int i = 0; i < 8; ++i) {
+        e[i] = in.nodes.Find(ids.At(i));
+        for (int j = 0; j < i; ++j) {
+          if (e[j] == e[i]) ids.At(i).Fail(in.NodeName(e[i]) + " appears twice in the element");
+        }
+      }
+      if (!SolidHex8::HasPositiveJacobian(in.nodes.coordinates, e)) ids.Fail(kOrder);
+      elements.push_back(e);
+    }
+  }
+  std::vector<int> uses(in.nodes.ids.size(), 0);
+  std::map<std::array<int, 4>, int> face_count;  // element faces by their sorted nodes
+  for (const auto& e : elements) {
+    for (int n : e) ++uses[n];
+    for (const auto& f : kHexFaces) {
+      ++face_count[SortedFace({e[f[0]], e[f[1]], e[f[2]], e[f[3]]})];
+    }
+  }
+  CheckConnected(in, uses, "element");
+  auto body = std::make_shared<SolidHex8>(in.nodes.coordinates, elements, material, kinematics,
+                                          in.ReadSupports());
+
+  // Face tractions: each face a boundary face of an element, the traction uniform on it.
+  Vec load = Vec::Zero(body->num_dofs());
+  if (auto list = root.Optional("tractions")) {
+    for (const JsonNode& item : list->Items()) {
+      item.ExpectObject({"faces", "group", "traction"});
+      if (item.Has("faces") == item.Has("group")) {
+        item.Fail("give exactly one of \"faces\" and \"group\"");
+      }
+      const Point traction = item.Field("traction").Vector(3);
+      auto apply = [&](const SolidHex8::Face& face, const JsonNode& where) {
+        const auto it = face_count.find(SortedFace(face));
+        std::string name;
+        for (int n : face) name += (name.empty() ? "" : ", ") + in.NodeName(n);
+        if (it == face_count.end()) where.Fail("(" + name + ") is not a face of any element");
+        if (it->second > 1) {
+          where.Fail("(" + name +
+                     ") is an interior face (shared by two elements); tractions act "
+                     "on the boundary");
+        }
+        body->AddFaceTraction(face, traction, &load);
+      };
+      if (auto faces = item.Optional("faces")) {
+        for (const JsonNode& face : faces->Items()) {
+          if (face.Size() != 4) face.Fail("a face is 4 node ids, in order around it");
+          SolidHex8::Face f;
+          for (int i = 0; i < 4; ++i) f[i] = in.nodes.Find(face.At(i));
+          apply(f, face);
+        }
+      } else {
+        const JsonNode ref = item.Field("group");
+        const GmshMesh::Group& g = in.Group(ref);
+        if (g.dim != 2) ref.Fail("tractions need a 2-D physical group (surfaces)");
+        for (const auto& face : g.faces) {
+          SolidHex8::Face f;
+          for (int i = 0; i < 4; ++i) f[i] = in.nodes.index.at(face[i]);
+          apply(f, ref);
+        }
+      }
+    }
+  }
+  Problem problem = FinishBody(in, body, load, file, settings);
+  problem.description = OptionalString(
+      root, "description",
+      "hexahedral solid, " + std::to_string(elements.size()) + " elements" +
+          (in.mesh ? " (" + std::filesystem::path(in.mesh_file).filename().string() + ")" : ""));
+  return problem;
+}
+
 // --- complementarity ----------------------------------------------------------------------
 
 Problem ReadLcp(const JsonNode& root, const std::string& file,
@@ -788,10 +957,13 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
     problem = ReadTruss(root, file, settings);
   } else if (k == "plane-stress-q4") {
     problem = ReadPlaneStress(root, file, directory, settings);
+  } else if (k == "solid-hex8") {
+    problem = ReadSolidHex8(root, file, directory, settings);
   } else if (k == "lcp") {
     problem = ReadLcp(root, file, settings);
   } else {
-    kind.Fail("must be \"truss\", \"plane-stress-q4\" or \"lcp\", got \"" + k + "\"");
+    kind.Fail("must be \"truss\", \"plane-stress-q4\", \"solid-hex8\" or \"lcp\", got \"" + k +
+              "\"");
   }
   problem.name = OptionalString(root, "name", std::filesystem::path(file).stem().string());
   if (problem.name.empty()) root.Field("name").Fail("must not be empty");

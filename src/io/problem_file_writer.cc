@@ -8,6 +8,7 @@
 #include "model/complementarity_model.h"
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
+#include "model/solid_hex8.h"
 #include "model/truss.h"
 
 namespace cb::io {
@@ -75,9 +76,19 @@ void WriteBody(const Problem& problem, OJson* j) {
     OJson elements = OJson::array();
     for (const auto& e : q4->elements()) elements.push_back({{"nodes", {e[0], e[1], e[2], e[3]}}});
     (*j)["elements"] = elements;
+  } else if (const auto* hex = dynamic_cast<const SolidHex8*>(&body)) {
+    (*j)["kind"] = "solid-hex8";
+    (*j)["deformation"] = hex->kinematics() == SolidKinematics::kSmallStrain ? "small" : "large";
+    (*j)["material"] = {{"E", hex->material().youngs_modulus},
+                        {"nu", hex->material().poisson_ratio}};
+    (*j)["nodes"] = nodes;
+    OJson elements = OJson::array();
+    for (const auto& e : hex->elements()) elements.push_back({{"nodes", e}});
+    (*j)["elements"] = elements;
   } else {
     throw std::invalid_argument("problem '" + problem.name +
-                                "': its body is neither a truss nor a plane-stress Q4 mesh");
+                                "': its body is not a truss, a plane-stress Q4 mesh or a "
+                                "hexahedral solid");
   }
   OJson supports = OJson::array();
   OJson loads = OJson::array();
@@ -113,6 +124,13 @@ void WriteBody(const Problem& problem, OJson* j) {
                            {"centre", ToJson(b->centre())},
                            {"radius", b->radius()},
                            {"side", b->side() == Ball::Side::kSolid ? "solid" : "cavity"}});
+    } else if (const auto* c = dynamic_cast<const Cylinder*>(o)) {
+      obstacles.push_back({{"id", id},
+                           {"type", "cylinder"},
+                           {"point", ToJson(c->point())},
+                           {"axis", ToJson(c->axis())},
+                           {"radius", c->radius()},
+                           {"side", c->side() == Ball::Side::kSolid ? "solid" : "cavity"}});
     } else {
       throw std::invalid_argument("problem '" + problem.name + "': obstacle " + std::to_string(k) +
                                   " (" + o->Describe() + ") has no problem-file form");

@@ -56,7 +56,8 @@ class ElasticBody {
   virtual std::vector<std::pair<int, int>> StiffnessEntries() const = 0;
   virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const = 0;
 
-  // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral; VTK cells).
+  // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral, 8: a
+  // hexahedron; VTK cells).
   virtual std::vector<std::vector<int>> Cells() const = 0;
   // The element quantities at displacement u (a truss's member forces, a continuum's stress);
   // none by default.

@@ -151,4 +151,78 @@ void Ball::Evaluate(const double* x, Order order, ObstacleLocal* out) const {
   }
 }
 
+// --- Cylinder: varphi(x) = s (rho - a), rho = |P (x - p)|, P = I - e e^T ------------------
+//
+// With n = P (x - p) / rho, the unit radial direction: grad varphi = s n and
+// hess varphi = s (P - n n^T) / rho (the ball's formula restricted to the plane normal to e).
+
+Cylinder::Cylinder(Point point, Point axis, double radius, Side side)
+    : point_(std::move(point)), axis_(std::move(axis)), radius_(radius), side_(side) {
+  if (point_.size() != 3 || axis_.size() != 3) {
+    throw std::invalid_argument("Cylinder: the point and the axis must have 3 components, got " +
+                                std::to_string(point_.size()) + " and " +
+                                std::to_string(axis_.size()));
+  }
+  if (!point_.allFinite() || !axis_.allFinite()) {
+    throw std::invalid_argument("Cylinder: non-finite point or axis");
+  }
+  const double length = axis_.norm();
+  if (!(length > 0.0)) throw std::invalid_argument("Cylinder: zero axis");
+  axis_ /= length;
+  if (!(radius_ > 0.0) || !std::isfinite(radius_)) {
+    throw std::invalid_argument("Cylinder: radius must be positive and finite, got " +
+                                std::to_string(radius_));
+  }
+}
+
+std::string Cylinder::Describe() const {
+  std::ostringstream out;
+  out << (side_ == Side::kSolid ? "solid cylinder (obstacle inside rho < a)"
+                                : "cavity cylinder (obstacle outside rho > a)")
+      << " with axis through p = " << FormatPoint(point_) << " along e = " << FormatPoint(axis_)
+      << ", a = " << radius_;
+  return out.str();
+}
+
+void Cylinder::Evaluate(const double* x, Order order, ObstacleLocal* out) const {
+  const double s = side_ == Side::kSolid ? -1.0 : 1.0;
+  double along = 0.0;
+  for (int c = 0; c < 3; ++c) along += axis_[c] * (x[c] - point_[c]);
+  double n[3];
+  double rho2 = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    n[c] = x[c] - point_[c] - along * axis_[c];
+    rho2 += n[c] * n[c];
+  }
+  const double rho = std::sqrt(rho2);
+  out->value = s * (rho - radius_);
+  if (order == Order::kValue) return;
+  if (!(rho > 0.0)) {
+    // On the axis the distance has no gradient: a unit vector normal to the axis (an element
+    // of the generalised gradient), and a zero (finite) Hessian, as for the ball's centre.
+    const int k = std::abs(axis_[0]) < 0.9 ? 0 : 1;
+    double m[3] = {0.0, 0.0, 0.0};
+    m[k] = 1.0;
+    double norm2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      m[c] -= axis_[k] * axis_[c];
+      norm2 += m[c] * m[c];
+    }
+    for (int c = 0; c < 3; ++c) out->gradient[c] = s * m[c] / std::sqrt(norm2);
+    return;
+  }
+  const double inv_rho = 1.0 / rho;
+  for (int c = 0; c < 3; ++c) {
+    n[c] *= inv_rho;
+    out->gradient[c] = s * n[c];
+  }
+  if (order != Order::kHessian) return;
+  const double scale = s * inv_rho;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      out->hessian[a][b] = scale * ((a == b ? 1.0 : 0.0) - axis_[a] * axis_[b] - n[a] * n[b]);
+    }
+  }
+}
+
 }  // namespace cb

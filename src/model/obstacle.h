@@ -80,4 +80,27 @@ class Ball final : public Obstacle {
   Side side_;
 };
 
+// A circular cylinder (3-D) of axis through `point` along `axis` (normalised here) and radius a.
+// With rho the distance from x to the axis: kSolid, the obstacle is the rod, varphi = a - rho;
+// kCavity, the obstacle is everything outside it (a body inside a pipe), varphi = rho - a.
+class Cylinder final : public Obstacle {
+ public:
+  using Side = Ball::Side;
+  Cylinder(Point point, Point axis, double radius, Side side);
+  int dim() const override { return 3; }
+  std::string Describe() const override;
+  void Evaluate(const double* x, Order order, ObstacleLocal* out) const override;
+  bool is_curved() const override { return true; }
+  const Point& point() const { return point_; }
+  const Point& axis() const { return axis_; }
+  double radius() const { return radius_; }
+  Side side() const { return side_; }
+
+ private:
+  Point point_;
+  Point axis_;
+  double radius_;
+  Side side_;
+};
+
 }  // namespace cb

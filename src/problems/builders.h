@@ -20,4 +20,10 @@ Parameters TwoBarDefaults();
 Parameters TwoBarObstacleDefaults();
 Problem BuildTwoBar(const Parameters& p);
 
+Parameters HertzDefaults();
+Problem BuildHertz(const Parameters& p);
+
+Parameters PlateDefaults();
+Problem BuildPlate(const Parameters& p);
+
 }  // namespace cb

@@ -50,7 +50,8 @@ struct ProblemInfo {
   std::function<Parameters()> defaults;  // the declared parameters with default values
 };
 
-// The registry, in a fixed order: block, arch-flat, arch-curved, then verification problems.
+// The registry, in a fixed order: block, arch-flat, arch-curved, the 3-D problems, then
+// verification problems.
 const std::vector<ProblemInfo>& ProblemRegistry();
 std::vector<std::string> ProblemNames();
 // Throws std::invalid_argument for an unknown name (listing the valid ones) or a bad setting.

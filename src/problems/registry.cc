@@ -57,6 +57,10 @@ const std::vector<ProblemInfo>& ProblemRegistry() {
           "arch-flat", "P2: two-layer arch truss between two flat obstacles, arc length"),
       Entry<ArchCurvedDefaults, BuildArch>(
           "arch-curved", "P3: two-layer arch truss, flat and cylindrical obstacles, arc length"),
+      Entry<HertzDefaults, BuildHertz>(
+          "hertz-3d", "3-D: hexahedral block pressed onto a rigid sphere (Hertz), fixed load"),
+      Entry<PlateDefaults, BuildPlate>(
+          "plate-3d", "3-D: neo-Hookean plate pressed onto a rigid cylinder, arc length"),
       Entry<BarWallDefaults, BuildBarWall>(
           "bar-wall", "verification: a bar pushed against a wall (closed form)"),
       Entry<TwoBarDefaults, BuildTwoBar>(
