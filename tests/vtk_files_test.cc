@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -160,7 +162,8 @@ TEST(ObstacleGeometryTest, SurfacesLieOnTheObstaclesZeroLevelSet) {
   const cb::HalfSpace plane(P({0.0, 0.0, -1.0}), P({1.0, 1.0, 1.0}));
   const cb::Ball sphere(P({0.5, 1.0, 1.5}), 2.0, cb::Ball::Side::kSolid);
   const cb::Ball circle(P({3.0, -1.0}), 0.5, cb::Ball::Side::kCavity);
-  for (const cb::Obstacle* o : std::vector<const cb::Obstacle*>{&plane, &sphere, &circle}) {
+  const cb::Cylinder rod(P({0.0, 1.0, -2.0}), P({1.0, 0.0, 1.0}), 1.5, cb::Ball::Side::kSolid);
+  for (const cb::Obstacle* o : std::vector<const cb::Obstacle*>{&plane, &sphere, &circle, &rod}) {
     const auto surface = ObstacleSurface(*o, box3);
     ASSERT_FALSE(surface.points.empty());
     for (const auto& p : surface.points) {
@@ -175,6 +178,24 @@ TEST(ObstacleGeometryTest, SurfacesLieOnTheObstaclesZeroLevelSet) {
   EXPECT_EQ(quad.polygons[0].size(), 4u);
   EXPECT_EQ(ObstacleSurface(circle, box3).lines.at(0).front(),
             ObstacleSurface(circle, box3).lines.at(0).back());  // closed
+  // The rod's tube spans the box along its axis: its two rims lie at the box's extreme
+  // projections onto the axis, so every corner of the box projects between them.
+  const auto tube = ObstacleSurface(rod, box3);
+  const cb::harness::Point3 axis{1.0 / std::sqrt(2.0), 0.0, 1.0 / std::sqrt(2.0)};
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& p : tube.points) {
+    const double s = p[0] * axis[0] + (p[2] + 2.0) * axis[2];
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  for (int k = 0; k < 8; ++k) {
+    const double corner_x = (k & 1) ? box3.high[0] : box3.low[0];
+    const double corner_z = (k & 4) ? box3.high[2] : box3.low[2];
+    const double s = corner_x * axis[0] + (corner_z + 2.0) * axis[2];
+    EXPECT_GE(s, lo - 1e-12);
+    EXPECT_LE(s, hi + 1e-12);
+  }
+  EXPECT_FALSE(tube.polygons.empty());
 }
 
 }  // namespace

@@ -115,6 +115,33 @@ SurfaceGeometry BallSurface(const Ball& b) {
   return g;
 }
 
+// A tube of kCircleSegments quadrilaterals around the axis, over the box's extent along it.
+SurfaceGeometry CylinderSurface(const Cylinder& c, const Box& box) {
+  const Point3 p = Padded(c.point());
+  const Point3 axis = Unit(Padded(c.axis()));
+  const int least = std::abs(axis[0]) <= std::abs(axis[1]) && std::abs(axis[0]) <= std::abs(axis[2])
+                        ? 0
+                        : (std::abs(axis[1]) <= std::abs(axis[2]) ? 1 : 2);
+  Point3 e{0.0, 0.0, 0.0};
+  e[least] = 1.0;
+  const Point3 t1 = Unit(Cross(axis, e));
+  const Point3 t2 = Cross(axis, t1);
+  const auto [lo, hi] = Extent(box, p, axis);
+  const double a = c.radius();
+  SurfaceGeometry g;
+  for (const double s : {lo, hi}) {
+    for (int k = 0; k < kCircleSegments; ++k) {
+      const double phi = 2.0 * std::numbers::pi * k / kCircleSegments;
+      g.points.push_back(Along(Along(p, axis, s), t1, a * std::cos(phi), t2, a * std::sin(phi)));
+    }
+  }
+  for (int k = 0; k < kCircleSegments; ++k) {
+    const int next = (k + 1) % kCircleSegments;
+    g.polygons.push_back({k, next, kCircleSegments + next, kCircleSegments + k});
+  }
+  return g;
+}
+
 }  // namespace
 
 Box BoxAround(const std::vector<Point>& points) {
@@ -147,6 +174,7 @@ SurfaceGeometry ObstacleSurface(const Obstacle& obstacle, const Box& around) {
   if (const auto* h = dynamic_cast<const HalfSpace*>(&obstacle))
     return HalfSpaceSurface(*h, around);
   if (const auto* b = dynamic_cast<const Ball*>(&obstacle)) return BallSurface(*b);
+  if (const auto* c = dynamic_cast<const Cylinder*>(&obstacle)) return CylinderSurface(*c, around);
   throw std::invalid_argument("ObstacleSurface: no geometry for the obstacle " +
                               obstacle.Describe());
 }
