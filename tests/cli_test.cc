@@ -805,12 +805,15 @@ TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
 // memory (here the build of the problem), with exit 3.
 TEST(CliTest, RunningOutOfMemorySaysWhileDoingWhat) {
   const auto dir = TempDir("memory_bad_alloc");
-  const std::string run = "ulimit -v 250000; " + std::string(CONTACTBENCH_BINARY) +
-                          " run --problem block --set n=300 --formulation implicit-fb --out " +
-                          dir.string();
+  // One OpenBLAS thread: the threaded OpenBLAS maps a buffer per worker at start-up and, when the
+  // address-space limit refuses it, waits for it forever (docs/hardening.md "Memory").
+  const std::string run =
+      "ulimit -v 250000; OPENBLAS_NUM_THREADS=1 " + std::string(CONTACTBENCH_BINARY) +
+      " run --problem block --set n=600 --formulation implicit-fb --out " + dir.string();
   const Outcome refused = Capture("(" + run + ") 2>&1");
   EXPECT_EQ(refused.status, 2) << refused.output;
   EXPECT_NE(refused.output.find("(RLIMIT_AS)"), std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find("usage:"), std::string::npos) << refused.output;  // a data error
   const Outcome insisted = Capture("(" + run + " --allow-memory) 2>&1");
   EXPECT_EQ(insisted.status, 3) << insisted.output;
   EXPECT_NE(insisted.output.find("contactbench: out of memory while building the problem"),

@@ -96,7 +96,7 @@ void CheckMemory(const MemoryEstimate& estimate, const std::string& what, bool a
   if (allow) return;
   const std::optional<MemoryLimit> limit = AvailableMemory();
   if (!limit || estimate.bytes() <= limit->bytes) return;
-  throw UsageError(what + " needs an estimated " + estimate.Describe() + ", more than the " +
+  throw InputError(what + " needs an estimated " + estimate.Describe() + ", more than the " +
                    Gib(limit->bytes) + " available (" + limit->source +
                    "); --allow-memory runs it anyway");
 }
