@@ -35,6 +35,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.patches import Patch  # noqa: E402
 
+from plotlib import histograms  # noqa: E402
+
 SHIFT = 10.0
 # Times enter the shifted means in milliseconds, so the shift is 10 ms. The shifted mean lies
 # between the geometric mean (values far above the shift) and the arithmetic mean (values far
@@ -347,56 +349,66 @@ def histogram_bins(hi):
     return bins
 
 
-def plot_histograms(title, runs, steps, path, iteration_word):
+def histogram_figure(title, runs, steps, iteration_word):
     """One panel per formulation: accepted steps per iteration count, warm and cold bars side
-    by side (bins of several counts when the counts run past 40)."""
+    by side. Every panel has the same bins (those of the largest count of the figure: bins of
+    several counts when it runs past 20) and the same kind of count axis, logarithmic when the
+    small bins would vanish. None when no formulation ran."""
     ran = runs[runs["status"] != "skipped"]
     formulations = list(dict.fromkeys(ran["formulation"]))
     if not formulations:
-        return False
+        return None
+    data, total = {}, {}
+    for f, s in zip(ran["formulation"], ran["start"]):
+        g = steps[(steps["formulation"] == f) & (steps["start"] == s)]
+        total[f, s] = len(g)
+        data[f, s] = g[g["accepted"].astype(bool)]["iterations"].astype(int).to_numpy()
+    bins = histogram_bins(max([int(v.max()) for v in data.values() if len(v)], default=0))
+    counts = {key: [int(((v >= lo) & (v <= up)).sum()) for lo, up, _ in bins]
+              for key, v in data.items()}
+    log = histograms.wants_log(list(counts.values()))
     cols = min(3, len(formulations))
     rows = math.ceil(len(formulations) / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.8 * rows), squeeze=False)
     colour = {"warm": "tab:blue", "cold": "tab:orange"}
+    x = np.arange(len(bins))
     for ax, f in zip(axes.flat, formulations):
         starts = list(ran[ran["formulation"] == f]["start"])
-        data, total = {}, {}
-        for s in starts:
-            g = steps[(steps["formulation"] == f) & (steps["start"] == s)]
-            total[s] = len(g)
-            data[s] = g[g["accepted"].astype(bool)]["iterations"].astype(int).to_numpy()
-        word = iteration_word(f)
         ax.set_title(f)
-        ax.set_xlabel(f"{word} per step")
-        ax.set_ylabel("accepted steps")
-        if not any(len(v) for v in data.values()):
+        ax.set_xlabel(f"{iteration_word(f)} per step")
+        if not any(len(data[f, s]) for s in starts):
             ax.text(0.5, 0.5, "no accepted step\n" + ", ".join(
-                f"{s}: 0 of {total[s]}" for s in starts), ha="center", va="center",
+                f"{s}: 0 of {total[f, s]}" for s in starts), ha="center", va="center",
                 transform=ax.transAxes)
             ax.set_yticks([])
             ax.set_xticks([])
             continue
-        hi = max(int(v.max()) for v in data.values() if len(v))
-        bins = histogram_bins(hi)
-        x = np.arange(len(bins))
-        with_data = [s for s in starts if len(data[s])]
+        with_data = [s for s in starts if len(data[f, s])]
         bar = 0.8 / len(with_data)
         handles = []
         for s in starts:
             c = colour.get(s, "tab:gray")
-            handles.append(Patch(color=c, label=f"{s}: {len(data[s])} of {total[s]} accepted"))
-            if not len(data[s]):
-                continue
-            i = with_data.index(s)
-            counts = [int(((data[s] >= lo) & (data[s] <= up)).sum()) for lo, up, _ in bins]
-            ax.bar(x + (i - (len(with_data) - 1) / 2) * bar, counts, width=bar, color=c)
-        ax.set_xticks(x, [label for _, _, label in bins],
-                      rotation=45 if len(bins) > 8 else 0, fontsize=8 if len(bins) > 8 else 10)
+            handles.append(Patch(color=c, label=f"{s}: {len(data[f, s])} of {total[f, s]} "
+                                 "accepted"))
+            if len(data[f, s]):
+                i = with_data.index(s)
+                ax.bar(x + (i - (len(with_data) - 1) / 2) * bar, counts[f, s], width=bar,
+                       color=c)
+        histograms.label_bins(ax, x, [label for _, _, label in bins])
+        histograms.count_axis(ax, "accepted steps", log)
         ax.legend(handles=handles, fontsize=8)
     for ax in list(axes.flat)[len(formulations):]:
         ax.axis("off")
     fig.suptitle(f"Iterations per accepted step: {title}")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
+    return fig
+
+
+def plot_histograms(title, runs, steps, path, iteration_word):
+    """histogram_figure written to `path`; False when no formulation ran."""
+    fig = histogram_figure(title, runs, steps, iteration_word)
+    if fig is None:
+        return False
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return True

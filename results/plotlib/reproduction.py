@@ -21,6 +21,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
 
+from plotlib import histograms, obstacles  # noqa: E402
+
 FIGURES = os.path.join("figures", "reproduction")
 ETA_LABEL = {1: "case 1 (proposed)", 2: "case 2", 3: "case 3 (degenerate)",
              4: "case 4 (nonsmooth FB)"}
@@ -33,6 +35,8 @@ REPORT_P2 = {"d": 119, "nc": 90, "kinks": 129}
 REPORT_P3 = {"d": 279, "nc": 210, "steps": 1604}
 # Below this residual norm the history is at the rounding floor of (29) and tells no rate.
 RATE_FLOOR = 1e-11
+# The deformed mesh is red in the deformed-shape figures, so the obstacles are drawn in blue.
+OBSTACLE_COLOUR = "tab:blue"
 
 
 def _read(path):
@@ -252,9 +256,12 @@ def _histogram_table(hists, report=None, report_label="the report"):
     return out
 
 
-def _path_figure(results_dir, run, title, name, labels):
+POINT_COLOUR = {"B": "tab:red", "C": "tab:purple", "D": "tab:green"}
+
+
+def _draw_path(ax, run, labels, **point_style):
+    """The accepted states per branch, the located kinks and the labelled points."""
     acc = _accepted(run)
-    fig, ax = plt.subplots(figsize=(8, 5))
     for branch, part in acc.groupby("branch"):
         ax.plot(part["control_disp"], part["lambda"], "-", lw=1.2,
                 label="branch %d%s" % (branch, " (after the switch)" if branch else ""))
@@ -262,17 +269,63 @@ def _path_figure(results_dir, run, title, name, labels):
     if k is not None and len(k):
         k = k[(k["verified"] == 1) & (k["between"] == 1)]
         ax.plot(k["control_disp"], k["lambda"], "k.", ms=4, label="kinks (%d)" % len(k))
+    for key, (row, style) in labels.items():
+        if row is not None:
+            ax.plot(row["control_disp"], row["lambda"], style, mfc="none",
+                    color=POINT_COLOUR.get(key, "k"), gid=key,
+                    label="%s: lambda = %.9g" % (key, row["lambda"]), **point_style)
+
+
+def inset_window(points, x_range, y_range, margin=1.5, floor=1e-12):
+    """((x0, x1), (y0, y1)) around `points` ((x, y) pairs): centred on them, its half sizes
+    `margin` times their largest separation, measured in fractions of the main axes' data
+    ranges so that the inset keeps the main figure's proportions; at least `floor` of those
+    ranges, so that coinciding points still give a window."""
+    xy = np.asarray(points, dtype=float)
+    centre = (xy.max(axis=0) + xy.min(axis=0)) / 2
+    ranges = np.array([x_range, y_range], dtype=float)
+    ranges[ranges <= 0] = 1.0
+    spread = ((xy.max(axis=0) - xy.min(axis=0)) / ranges).max()
+    half = margin * max(spread, floor) * ranges
+    return tuple((c - h, c + h) for c, h in zip(centre, half))
+
+
+def _zoom_inset(ax, run, labels, keys):
+    """An inset of the main axes around the points `keys` of `labels`, the path and the points
+    drawn again at that scale (B and C of P2 lie a hair apart)."""
+    rows = [labels[k][0] for k in keys if labels.get(k, (None,))[0] is not None]
+    if len(rows) < 2:
+        return None
+    acc = _accepted(run)
+    window = inset_window([(r["control_disp"], r["lambda"]) for r in rows],
+                          np.ptp(acc["control_disp"]), np.ptp(acc["lambda"]))
+    inset = ax.inset_axes([0.56, 0.08, 0.4, 0.42])
+    _draw_path(inset, run, {k: labels[k] for k in keys}, ms=9, mew=1.6)
+    inset.set_xlim(*window[0])
+    inset.set_ylim(*window[1])
+    inset.tick_params(labelsize=7)
+    inset.set_title("around " + " and ".join(keys), fontsize=8)
+    inset.grid(True, alpha=0.3)
+    ax.indicate_inset_zoom(inset, edgecolor="0.4")
+    return inset
+
+
+def _path_figure(results_dir, run, title, name, labels, inset=()):
+    """The path with its kinks and the points of `labels` ({key: (row, marker)}); `inset`: the
+    keys of points to show again in a zoomed inset."""
+    fig, ax = plt.subplots(figsize=(8, 5))
+    _draw_path(ax, run, labels, ms=10, mew=1.8)
     for i, (key, (row, style)) in enumerate(labels.items()):
         if row is not None:
-            ax.plot(row["control_disp"], row["lambda"], style, ms=10, mfc="none", mew=1.8)
-            # Staggered offsets: B and C of P2 are a hair apart.
+            # Staggered offsets: points close together keep their letters apart.
             ax.annotate(key, (row["control_disp"], row["lambda"]), textcoords="offset points",
                         xytext=(-22 + 16 * i, -22 + 12 * i), fontsize=12, fontweight="bold")
+    _zoom_inset(ax, run, labels, inset)
     ax.set_xlabel("x-displacement of node (a) [m]")
     ax.set_ylabel("load parameter lambda [-]")
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left")
     return _save(fig, results_dir, name)
 
 
@@ -287,6 +340,12 @@ def _deformed_figure(results_dir, run, label, title, name):
     fig, ax = plt.subplots(figsize=(10, 3.6))
     _draw_mesh(ax, snap, cells, 0.0, color="0.75", lw=0.6)
     _draw_mesh(ax, snap, cells, 1.0, color="C3", lw=0.9)
+    drawn = obstacles.read(run["dir"])
+    if drawn:
+        _draw_obstacles_around_mesh(ax, drawn)
+        title += ", the obstacles in blue"
+    else:
+        title += " (the records hold no obstacle geometry: vtk/*obstacle*.vtp)"
     contacts = run["snapshot_contacts"]
     if contacts is not None:
         c = contacts[(contacts["label"] == label) & (contacts["step"] == snap["step"].iloc[0])]
@@ -295,12 +354,24 @@ def _deformed_figure(results_dir, run, label, title, name):
         ax.plot(xy.loc[closed, "x"] + xy.loc[closed, "ux"],
                 xy.loc[closed, "y"] + xy.loc[closed, "uy"],
                 "ko", ms=4, mfc="none", label="nodes in contact")
+    if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=8, loc="upper right")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(title, fontsize=10)
     return _save(fig, results_dir, name)
+
+
+def _draw_obstacles_around_mesh(ax, drawn, margin=0.15):
+    """The obstacles, seen through a window around the mesh (its extent and `margin` of its
+    larger side each way): an obstacle's geometry may reach far beyond the body (a half-plane's
+    line, a large disc) and would otherwise shrink the mesh to a speck."""
+    box = ax.dataLim
+    pad = margin * max(box.width, box.height)
+    obstacles.draw(ax, drawn, colour=OBSTACLE_COLOUR)
+    ax.set_xlim(box.x0 - pad, box.x1 + pad)
+    ax.set_ylim(box.y0 - pad, box.y1 + pad)
 
 
 def _critical(run, kind, switched=None):
@@ -392,7 +463,7 @@ def p2(results_dir, lines):
     labels = {"B": (b, "s"), "C": (c, "D"), "D": (d, "o")}
     path = _path_figure(results_dir, r, "P2 arch-flat, implicit-fb, Newton: equilibrium path "
                         "with kinks, limit point B, bifurcation point C, asymmetric branch D",
-                        "p2_path.png", labels)
+                        "p2_path.png", labels, inset=("B", "C"))
     lines += ["![P2 path](%s)" % path, ""]
     path = _deformed_figure(results_dir, r, "final", "P2 arch-flat, implicit-fb, Newton: "
                             "deformed configuration at D (red) over the undeformed (grey)",
@@ -459,13 +530,13 @@ def p3(results_dir, lines):
     counts = [_bin_label(lo, hi) for lo, hi in HISTOGRAM_BINS]
     width = 0.8 / (len(hists) + 1)
     xs = np.arange(len(counts))
-    ax.bar(xs, [report_binned.get(c, 0) for c in counts], width, label="the report (csolve)")
-    for i, (name, h) in enumerate(hists.items()):
-        ax.bar(xs + (i + 1) * width, [h.get(c, 0) for c in counts], width, label="suite: " + name)
-    ax.set_xticks(xs + width * len(hists) / 2)
-    ax.set_xticklabels(counts)
+    bars = [("the report (csolve)", [report_binned.get(c, 0) for c in counts])]
+    bars += [("suite: " + name, [h.get(c, 0) for c in counts]) for name, h in hists.items()]
+    for i, (name, heights) in enumerate(bars):
+        ax.bar(xs + i * width, heights, width, label=name)
+    histograms.label_bins(ax, xs + width * len(hists) / 2, counts)
     ax.set_xlabel("iterations per step")
-    ax.set_ylabel("steps")
+    histograms.count_axis(ax, "steps", histograms.wants_log([h for _, h in bars]))
     ax.set_title("P3 arch-curved, implicit-fb: iterations per step beside the report's Table 2",
                  fontsize=10)
     ax.legend(fontsize=8)

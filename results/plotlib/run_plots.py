@@ -12,10 +12,8 @@ an LCP):
 
 `write(run_dir, figures_dir, step=None)` writes them and returns their paths.
 """
-import glob
 import json
 import os
-import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 import pandas as pd
@@ -26,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
 
-from plotlib import comparison  # noqa: E402
+from plotlib import comparison, obstacles  # noqa: E402
 
 RECORDS = ["steps", "iterations", "kinks", "critical", "snapshots", "snapshot_contacts",
            "cells", "runs"]
@@ -107,33 +105,6 @@ def plot_path(records, path):
 
 # --- the deformed shapes ---------------------------------------------------------------------
 
-def read_obstacles(run_dir):
-    """The obstacles' geometry from the VTK files the run wrote (vtk/*obstacle*.vtp): a list of
-    (name, points (n x 3), polylines (lists of point indices))."""
-    obstacles = []
-    for path in sorted(glob.glob(os.path.join(run_dir, "vtk", "*obstacle*.vtp"))):
-        root = ElementTree.parse(path).getroot()
-        piece = root.find("./PolyData/Piece")
-        if piece is None:
-            continue
-        points = np.array(piece.find("./Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-        lines = []
-        for kind in ("Lines", "Polys"):
-            block = piece.find(kind)
-            if block is None:
-                continue
-            arrays = {a.get("Name"): np.array(a.text.split(), dtype=int)
-                      for a in block.findall("DataArray")}
-            start = 0
-            for end in arrays["offsets"]:
-                cell = list(arrays["connectivity"][start:end])
-                lines.append(cell + cell[:1] if kind == "Polys" else cell)
-                start = end
-        name = os.path.splitext(os.path.basename(path))[0]
-        obstacles.append((name, points, lines))
-    return obstacles
-
-
 def _state_segments(nodes, cells, dims):
     """The element edges of one saved state in the deformed configuration."""
     xyz = nodes[dims].to_numpy(dtype=float) + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
@@ -157,7 +128,7 @@ def plot_deformed(records, path):
     saved = list(dict.fromkeys(zip(snapshots["step"], snapshots["label"])))
     if len(saved) > 6:
         saved = [saved[int(round(i))] for i in np.linspace(0, len(saved) - 1, 6)]
-    obstacles = read_obstacles(records["dir"])
+    drawn = obstacles.read(records["dir"])
     columns = min(3, len(saved))
     rows = -(-len(saved) // columns)
     three_d = len(dims) == 3
@@ -175,10 +146,7 @@ def plot_deformed(records, path):
                     ax.plot(*zip(a, b), **style)
             else:
                 ax.add_collection(LineCollection(segments, **style))
-        for name, points, lines in obstacles:
-            for line in lines:
-                xyz = points[line]
-                ax.plot(*(xyz[:, :3].T if three_d else xyz[:, :2].T), color="tab:red", lw=1.4)
+        obstacles.draw(ax, drawn, three_d)
         if contacts is not None:
             c = contacts[(contacts["step"] == step) & (contacts["label"] == label)]
             closed = nodes[nodes["node"].isin(c[c["r"] < 0]["node"])]

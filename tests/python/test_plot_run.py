@@ -13,7 +13,7 @@ import pandas as pd
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "results"))
-from plotlib import run_plots  # noqa: E402
+from plotlib import obstacles, run_plots  # noqa: E402
 
 BINARY = os.environ.get("CONTACTBENCH_BINARY",
                         os.path.join(ROOT, "build", "bin", "contactbench"))
@@ -86,9 +86,9 @@ class PlotRun(unittest.TestCase):
 
     def test_the_obstacles_are_read_from_the_runs_vtk_files(self):
         # The wall: the half-plane x > 1.01, drawn as one line on x = 1.01.
-        obstacles = run_plots.read_obstacles(self.run_dir)
-        self.assertEqual(len(obstacles), 1)
-        name, points, lines = obstacles[0]
+        read = obstacles.read(self.run_dir)
+        self.assertEqual(len(read), 1)
+        name, points, lines = read[0]
         self.assertEqual(lines, [[0, 1]])
         np.testing.assert_allclose(points[:, 0], [1.01, 1.01])
 
