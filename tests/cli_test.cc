@@ -803,7 +803,20 @@ TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
 // Under an address-space limit (RLIMIT_AS, from `ulimit -v`) the problem is refused naming that
 // limit; insisted on with --allow-memory, the std::bad_alloc is reported as what ran out of
 // memory (here the build of the problem), with exit 3.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CONTACTBENCH_TEST_UNDER_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define CONTACTBENCH_TEST_UNDER_ASAN 1
+#endif
+
 TEST(CliTest, RunningOutOfMemorySaysWhileDoingWhat) {
+#ifdef CONTACTBENCH_TEST_UNDER_ASAN
+  GTEST_SKIP() << "AddressSanitizer maps terabytes of shadow memory: the binary cannot start "
+                  "under the address-space limit this test sets";
+#endif
   const auto dir = TempDir("memory_bad_alloc");
   // One OpenBLAS thread: the threaded OpenBLAS maps a buffer per worker at start-up and, when the
   // address-space limit refuses it, waits for it forever (docs/hardening.md "Memory").

@@ -127,7 +127,7 @@ std::vector<std::string> SplitList(const std::string& text) {
 // A comma-separated list with no empty item ("a,,b", ",", "" are refused: an empty list would
 // silently mean the default).
 std::vector<std::string> NonEmptyList(const Option& option, const std::string& text) {
-  const std::vector<std::string> items = SplitList(text);
+  std::vector<std::string> items = SplitList(text);
   if (items.empty()) Refuse(option, "the list '" + text + "' names nothing");
   if (std::count(text.begin(), text.end(), ',') + 1 != static_cast<long>(items.size())) {
     Refuse(option, "the list '" + text + "' has an empty name");

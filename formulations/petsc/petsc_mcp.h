@@ -97,12 +97,13 @@ struct McpRowMap {
   std::vector<int> first, second;
   std::vector<int> csc_start, csc_rows;  // the step equations' pattern, for SamePattern
 };
-McpRowMap MakeMcpRowMap(const StepEquationLayout& layout, const SpMat& equations_jacobian);
-// Whether `equations_jacobian` has the pattern `map` was made from.
-bool SamePattern(const McpRowMap& map, const SpMat& equations_jacobian);
+// `s` is the step equations' Jacobian in each of these.
+McpRowMap MakeMcpRowMap(const StepEquationLayout& layout, const SpMat& s);
+// Whether `s` has the pattern `map` was made from.
+bool SamePattern(const McpRowMap& map, const SpMat& s);
 // The MCP Jacobian's values, in the order of map.columns, into values[0 .. nnz).
-void FillMcpValues(const McpRowMap& map, const SpMat& equations_jacobian, double* values);
+void FillMcpValues(const McpRowMap& map, const SpMat& s, double* values);
 // The MCP Jacobian as a sparse matrix (tests).
-SpMat McpJacobian(const McpRowMap& map, const SpMat& equations_jacobian);
+SpMat McpJacobian(const McpRowMap& map, const SpMat& s);
 
 }  // namespace cb
