@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 namespace cb::harness {
 
@@ -36,6 +37,18 @@ Point3 Along(const Point3& p, const Point3& t, double s, const Point3& q = {0, 0
   return {p[0] + s * t[0] + r * q[0], p[1] + s * t[1] + r * q[1], p[2] + s * t[2] + r * q[2]};
 }
 
+// Two unit directions perpendicular to the unit vector n and to each other: n x (the axis least
+// aligned with n), then n x that (a plane's two in-plane directions, a cylinder's cross-section).
+std::pair<Point3, Point3> PerpendicularPair(const Point3& n) {
+  const int least = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2])
+                        ? 0
+                        : (std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2);
+  Point3 e{0.0, 0.0, 0.0};
+  e[least] = 1.0;
+  const Point3 t1 = Unit(Cross(n, e));
+  return {t1, Cross(n, t1)};
+}
+
 // The range of (corner - origin) . direction over the box's corners.
 std::pair<double, double> Extent(const Box& box, const Point3& origin, const Point3& direction) {
   double lo = INFINITY, hi = -INFINITY;
@@ -61,14 +74,7 @@ SurfaceGeometry HalfSpaceSurface(const HalfSpace& h, const Box& box) {
     g.lines = {{0, 1}};
     return g;
   }
-  // Two directions in the boundary plane: n x (the axis least aligned with n), then n x t1.
-  const int axis = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2])
-                       ? 0
-                       : (std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2);
-  Point3 e{0.0, 0.0, 0.0};
-  e[axis] = 1.0;
-  const Point3 t1 = Unit(Cross(n, e));
-  const Point3 t2 = Cross(n, t1);
+  const auto [t1, t2] = PerpendicularPair(n);
   const auto [lo1, hi1] = Extent(box, p, t1);
   const auto [lo2, hi2] = Extent(box, p, t2);
   g.points = {Along(p, t1, lo1, t2, lo2), Along(p, t1, hi1, t2, lo2), Along(p, t1, hi1, t2, hi2),
@@ -119,13 +125,7 @@ SurfaceGeometry BallSurface(const Ball& b) {
 SurfaceGeometry CylinderSurface(const Cylinder& c, const Box& box) {
   const Point3 p = Padded(c.point());
   const Point3 axis = Unit(Padded(c.axis()));
-  const int least = std::abs(axis[0]) <= std::abs(axis[1]) && std::abs(axis[0]) <= std::abs(axis[2])
-                        ? 0
-                        : (std::abs(axis[1]) <= std::abs(axis[2]) ? 1 : 2);
-  Point3 e{0.0, 0.0, 0.0};
-  e[least] = 1.0;
-  const Point3 t1 = Unit(Cross(axis, e));
-  const Point3 t2 = Cross(axis, t1);
+  const auto [t1, t2] = PerpendicularPair(axis);
   const auto [lo, hi] = Extent(box, p, axis);
   const double a = c.radius();
   SurfaceGeometry g;
