@@ -16,6 +16,8 @@ std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig&) {
   throw std::invalid_argument("petsc-ssls: this build has no PETSc");
 }
 
-PetscProcessScope::~PetscProcessScope() = default;
+// Nothing to finalise without PETSc. User-provided rather than defaulted: the class is the same
+// in both builds, whose other definition finalises PETSc.
+PetscProcessScope::~PetscProcessScope() {}  // NOLINT(modernize-use-equals-default)
 
 }  // namespace cb
