@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "elastic_body_check.h"
 #include "fd_check.h"
 #include "model/body_contact_model.h"
 #include "model/elastic_body.h"
@@ -253,20 +254,7 @@ TEST(ModelTest, PositionAddsDisplacementOnFreeComponentsOnly) {
 void CheckTrussDerivatives(const Truss& truss, double scale, unsigned seed) {
   std::mt19937 rng(seed);
   for (int trial = 0; trial < 3; ++trial) {
-    const Vec u = RandomVec(truss.num_dofs(), scale, &rng);
-    auto energy = [&](const Vec& v) { return truss.Energy(v); };
-    auto force = [&](const Vec& v) {
-      Vec f;
-      truss.InternalForce(v, &f);
-      return f;
-    };
-    Vec f;
-    truss.InternalForce(u, &f);
-    EXPECT_DERIVATIVE_NEAR(f, FiniteDifferenceGradient(energy, u), kFdTol);
-    SpMat k;
-    truss.Stiffness(u, &k);
-    EXPECT_DERIVATIVE_NEAR(Dense(k), FiniteDifferenceJacobian(force, u), kFdTol);
-    EXPECT_LT((Dense(k) - Dense(k).transpose()).norm(), 1e-12 * Dense(k).norm());
+    fd_check::ExpectBodyDerivativesMatch(truss, RandomVec(truss.num_dofs(), scale, &rng), kFdTol);
   }
 }
 
@@ -362,19 +350,7 @@ TEST(ModelTest, Q4GradientAndStiffnessMatchFiniteDifferences) {
   fixed[0] = fixed[1] = true;
   const PlaneStressQ4 body(GridCoordinates(nx, ny, 3.0, 2.0, 0.25, &rng), GridElements(nx, ny),
                            kSteelish, fixed);
-  const Vec u = RandomVec(body.num_dofs(), 0.1, &rng);
-  auto energy = [&](const Vec& v) { return body.Energy(v); };
-  auto force = [&](const Vec& v) {
-    Vec f;
-    body.InternalForce(v, &f);
-    return f;
-  };
-  Vec f;
-  body.InternalForce(u, &f);
-  EXPECT_DERIVATIVE_NEAR(f, FiniteDifferenceGradient(energy, u), kFdTol);
-  SpMat k;
-  body.Stiffness(u, &k);
-  EXPECT_DERIVATIVE_NEAR(Dense(k), FiniteDifferenceJacobian(force, u), kFdTol);
+  fd_check::ExpectBodyDerivativesMatch(body, RandomVec(body.num_dofs(), 0.1, &rng), kFdTol);
   EXPECT_TRUE(body.is_linear());
 }
 

@@ -14,14 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "fd_check.h"
+#include "elastic_body_check.h"
 #include "problems/box_mesh.h"
 
 namespace cb {
 namespace {
-
-using fd_check::FiniteDifferenceGradient;
-using fd_check::FiniteDifferenceJacobian;
 
 constexpr double kFdTol = 1e-6;
 const SolidMaterial kMaterial{200.0, 0.3};
@@ -61,31 +58,6 @@ void ExpectInvalid(F&& statement, const std::string& fragment) {
   }
 }
 
-void ExpectDerivativesMatch(const SolidHex8& body, const Vec& u) {
-  auto energy = [&](const Vec& v) { return body.Energy(v); };
-  auto force = [&](const Vec& v) {
-    Vec f;
-    body.InternalForce(v, &f);
-    return f;
-  };
-  Vec f;
-  body.InternalForce(u, &f);
-  EXPECT_DERIVATIVE_NEAR(f, FiniteDifferenceGradient(energy, u), kFdTol);
-  SpMat k;
-  body.Stiffness(u, &k);
-  EXPECT_DERIVATIVE_NEAR(Mat(k), FiniteDifferenceJacobian(force, u), kFdTol);
-  EXPECT_EQ((Mat(k) - Mat(k).transpose()).cwiseAbs().maxCoeff(), 0.0);
-  // The streamed form adds the same matrix.
-  const auto entries = body.StiffnessEntries();
-  std::vector<int> slots(entries.size());
-  for (std::size_t i = 0; i < slots.size(); ++i) slots[i] = static_cast<int>(i);
-  std::vector<double> values(entries.size(), 0.0);
-  body.AddStiffness(u, 2.0, slots.data(), values.data());
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    EXPECT_EQ(values[i], 2.0 * k.coeff(entries[i].first, entries[i].second));
-  }
-}
-
 TEST(SolidHex8Test, SmallStrainDerivativesMatchFiniteDifferences) {
   std::mt19937 rng(11);
   const BoxMesh mesh = DistortedBox({3, 2, 2}, 0.2, &rng);
@@ -94,7 +66,7 @@ TEST(SolidHex8Test, SmallStrainDerivativesMatchFiniteDifferences) {
   const SolidHex8 body(mesh.coordinates, mesh.elements, kMaterial, SolidKinematics::kSmallStrain,
                        fixed);
   EXPECT_TRUE(body.is_linear());
-  ExpectDerivativesMatch(body, RandomVec(body.num_dofs(), 0.05, &rng));
+  fd_check::ExpectBodyDerivativesMatch(body, RandomVec(body.num_dofs(), 0.05, &rng), kFdTol);
 }
 
 TEST(SolidHex8Test, LargeStrainDerivativesMatchFiniteDifferences) {
@@ -106,7 +78,7 @@ TEST(SolidHex8Test, LargeStrainDerivativesMatchFiniteDifferences) {
                        fixed);
   EXPECT_FALSE(body.is_linear());
   // Strains of some 10 %: well inside the non-linear range of the law.
-  ExpectDerivativesMatch(body, RandomVec(body.num_dofs(), 0.05, &rng));
+  fd_check::ExpectBodyDerivativesMatch(body, RandomVec(body.num_dofs(), 0.05, &rng), kFdTol);
 }
 
 TEST(SolidHex8Test, LargeStrainTangentAtRestIsTheLinearStiffness) {
