@@ -37,7 +37,7 @@ from plotlib import run_plots  # noqa: E402
 
 FIGURES = os.path.join("figures", "solid3d")
 COMMAND = "bash scripts/run_solid3d.sh && /usr/bin/python3 results/plot.py"
-# The observed rate is fitted from this mesh on, where the errors fall monotonically.
+# A second rate is fitted from this mesh on, where the errors fall monotonically.
 FIT_FROM = 16
 
 
@@ -180,6 +180,9 @@ def hertz_figure(results_dir, table):
         start = 100 * abs(table["error_a"].iloc[0])
         right.loglog(n, start * (n / n[0]) ** -order, "k" + style, lw=0.8,
                      label="slope -%d" % order)
+    right.set_xticks(n, minor=False)
+    right.set_xticks([], minor=True)
+    right.set_xticklabels(["%d" % v for v in n])
     right.set_xlabel("n (n x n x n hexahedra; h ~ 1/n)")
     right.set_ylabel("|relative error| [%]")
     right.set_title("hertz-3d: error against Hertz's closed form", fontsize=10)
@@ -311,16 +314,18 @@ def _hertz_lines(results_dir, table):
         lines.append("| %d | %d | %d | %.4f | %s | %s | %.3f | %s | %s |"
                      % (r["n"], r["d"], r["nc"], r["a"], _percent(r["error_a"]),
                         _rate(r["rate_a"]), r["p0"], _percent(r["error_p0"]), _rate(r["rate_p0"])))
-    fine = table[table["n"] >= FIT_FROM]
-    lines.append("")
-    if len(fine) >= 2:
-        lines.append("Fitted over n = %s: |error a| ~ n^-%.2f, |error p0| ~ n^-%.2f."
-                     % (", ".join(str(v) for v in fine["n"]),
-                        fitted_rate(fine["n"], fine["error_a"]),
-                        fitted_rate(fine["n"], fine["error_p0"])))
-    lines += ["Below n = %d the errors are not monotone: the edge of the contact area falls "
-              "between nodes 0.3-0.7 mm apart, and which node is the last in contact changes from "
-              "mesh to mesh (docs/problems.md)." % FIT_FROM, ""]
+    fits = []
+    for label, rows in (("all meshes", table), ("n >= %d" % FIT_FROM,
+                                                table[table["n"] >= FIT_FROM])):
+        if len(rows) >= 2:
+            fits.append("%s |error a| ~ n^-%.2f, |error p0| ~ n^-%.2f"
+                        % (label, fitted_rate(rows["n"], rows["error_a"]),
+                           fitted_rate(rows["n"], rows["error_p0"])))
+    lines += ["", "Least-squares fits of log |error| against log n: %s. The rates between "
+              "successive meshes scatter, and below n = %d the errors are not monotone: the edge "
+              "of the contact area falls between nodes 0.3-0.7 mm apart, and which node is the "
+              "last in contact changes from mesh to mesh (docs/problems.md)."
+              % ("; ".join(fits) or "too few meshes", FIT_FROM), ""]
     lines += ["![hertz-3d against Hertz](%s)" % hertz_figure(results_dir, table), ""]
     return lines
 
