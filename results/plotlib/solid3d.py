@@ -143,11 +143,10 @@ def hertz_table(results_dir):
 # --- figures -------------------------------------------------------------------------------
 
 def _save(fig, results_dir, name):
+    """Saves `fig` as FIGURES/name under results_dir; returns that path relative to it."""
     os.makedirs(os.path.join(results_dir, FIGURES), exist_ok=True)
-    path = os.path.join(FIGURES, name)
-    fig.savefig(os.path.join(results_dir, path), dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    run_plots._save(fig, os.path.join(results_dir, FIGURES, name))
+    return os.path.join(FIGURES, name)
 
 
 def hertz_figure(results_dir, table):
