@@ -27,7 +27,7 @@
 // fixed-load solve from the cold start, n = 16, 24 and 40 (d = 14161, 45625 and 203401), every
 // formulation that accepts it except, for this benchmark's time budget, the NLopt ones (as on P1
 // above n = 25), ipopt-mpcc above n = 16, and all but implicit-fb at n = 40 (minutes and
-// gigabytes; d ~ 3e5, n = 46, is left out for the same budget: docs/findings.md). implicit-fb's
+// gigabytes; d ~ 3e5, n = 46, is left out for the same budget and the shared memory). implicit-fb's
 // Hertz solves also measure its Newton iteration against one factorisation + solve of its
 // Jacobian, and the fill of the 3-D factorisation by ordering (HertzIterationCounters).
 //
