@@ -4,38 +4,19 @@ and compares the contact radius and the peak pressure with Hertz's closed form.
 
     python3 scripts/hertz_convergence.py build/bin/contactbench OUTDIR [n ...]
 
-Measured as src/problems/hertz.cc's MeasureHertzContact does: the radius from the second moment
-of the contact reactions (sum |r| rho^2 / sum |r| = 2 a^2 / 5), the peak pressure as the reaction
-of the node at the origin over its tributary area (a quarter of the first cell).
+Measured as src/problems/hertz.cc's MeasureHertzContact does (results/plotlib/solid3d.py, which
+also writes the report's table from scripts/run_solid3d.sh's records): the radius from the second
+moment of the contact reactions (sum |r| rho^2 / sum |r| = 2 a^2 / 5), the peak pressure as the
+reaction of the node at the origin over its tributary area (a quarter of the first cell).
 """
-import csv
-import math
+import os
 import subprocess
 import sys
 
+import pandas as pd
 
-def closed_form(force, radius, e, nu):
-    e_star = e / (1.0 - nu * nu)
-    a = (3.0 * force * radius / (4.0 * e_star)) ** (1.0 / 3.0)
-    return a, 3.0 * force / (2.0 * math.pi * a * a)
-
-
-def measure(directory):
-    xy = {}
-    with open(f"{directory}/solution.csv") as f:
-        for row in csv.DictReader(f):
-            xy[int(row["node"])] = (float(row["x"]), float(row["y"]))
-    total = moment = origin = 0.0
-    for row in csv.DictReader(open(f"{directory}/contacts.csv")):
-        x, y = xy[int(row["node"])]
-        force = -float(row["r"])
-        total += force
-        moment += force * (x * x + y * y)
-        if x == 0.0 and y == 0.0:
-            origin = force
-    first_x = min(x for x, _ in xy.values() if x > 0.0)
-    first_y = min(y for _, y in xy.values() if y > 0.0)
-    return math.sqrt(2.5 * moment / total), origin / (0.25 * first_x * first_y)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "results"))
+from plotlib.solid3d import closed_form, measure  # noqa: E402
 
 
 def main():
@@ -51,7 +32,8 @@ def main():
                         "--set", f"n={n}", "--set", f"nz={n}", "--out", directory,
                         "--overwrite"], check=True, capture_output=True)
         d = 3 * (n + 1) ** 3 - 2 * (n + 1) ** 2
-        a, p0 = measure(directory)
+        a, p0 = measure(pd.read_csv(f"{directory}/solution.csv"),
+                        pd.read_csv(f"{directory}/contacts.csv"))
         print(f"| {n} | {d} | {(n + 1) ** 2} | {a:.4f} | {100 * (a / a_ref - 1):+.2f} % "
               f"| {p0:.3f} | {100 * (p0 / p_ref - 1):+.2f} % |")
 

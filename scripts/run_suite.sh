@@ -4,12 +4,14 @@
 #                                              (CSV), saved states (CSV, VTK)
 #   results/readings/                          P2 and P3 under other readings of the report's
 #                                              figure (scripts/run_readings.sh, about a minute)
+#   results/solid3d/                           hertz-3d's meshes and plate-3d's path
+#                                              (scripts/run_solid3d.sh, about a minute)
 #   results/compare/                           the formulation comparison (scripts/run_compare.sh)
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
 #   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
 # A run that fails keeps its records and the job goes on; the reports say what failed.
-# Environment: SKIP_READINGS=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their old
-# files) alone.
+# Environment: SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts
+# (and their old files) alone.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
@@ -50,6 +52,9 @@ done
 
 if [[ "${SKIP_READINGS:-0}" != 1 ]]; then
   SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_readings.sh" || status=3
+fi
+if [[ "${SKIP_SOLID3D:-0}" != 1 ]]; then
+  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_solid3d.sh" || status=3
 fi
 if [[ "${SKIP_COMPARE:-0}" != 1 ]]; then
   SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_compare.sh" || status=3

@@ -36,8 +36,12 @@ Parameters HertzDefaults() {
                   "assumption; a linear model); sphere: the exact rigid sphere (curved)",
                   {"paraboloid", "sphere"});
   p.DeclareReal("load", 1.0, "lambda of the single fixed-load solve", -1e30, 1e30);
-  // Gaps of the order of the approach a^2 / R ~ 0.02 mm, nodal reactions ~ 0.1 N.
-  DeclareScaleParameters(1e-2, 1e-1, &p);
+  // L: the gaps of the bottom face, rho^2 / (2 R) = 0 ... 2 mm, are O(1-20) L, not O(100) L as
+  // with the approach a^2 / R ~ 0.02 mm: psi(g/L, -r/R, rho) then weighs the open pairs' rows as
+  // the closed ones', and the cold start (every pair at g = L, r = R; docs/method.md section 4)
+  // no longer stalls on a stationary point of the merit (8^3 with the sphere). R: nodal
+  // reactions ~ 0.1 N.
+  DeclareScaleParameters(1e-1, 1e-1, &p);
   return p;
 }
 
