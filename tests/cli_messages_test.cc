@@ -13,6 +13,7 @@
 
 #include "harness/compare_table.h"
 #include "harness/suggest.h"
+#include "source_tree.h"
 
 namespace {
 
@@ -33,8 +34,7 @@ Outcome RunCli(const std::string& args, const std::string& streams = "2>&1") {
   return out;
 }
 
-const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";
 
 std::filesystem::path TempDir(const std::string& name) {
   auto dir = std::filesystem::temp_directory_path() / ("contactbench_messages_" + name);

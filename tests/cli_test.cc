@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "harness/options.h"
+#include "source_tree.h"
 
 namespace {
 
@@ -240,8 +241,7 @@ TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
 
 // --- problem files ---------------------------------------------------------------------------
 
-const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";
 
 // Rows of a CSV file as column -> value maps.
 std::vector<std::map<std::string, std::string>> Table(const std::filesystem::path& file) {

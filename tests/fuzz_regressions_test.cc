@@ -12,11 +12,12 @@
 #include <vector>
 
 #include "../fuzz/readers.h"
+#include "source_tree.h"
 
 namespace cb {
 namespace {
 
-const std::filesystem::path kRoot = std::filesystem::path(__FILE__).parent_path().parent_path();
+const std::filesystem::path kRoot = ::cb::testing_support::SourceRoot();
 
 std::vector<std::filesystem::path> FilesUnder(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;

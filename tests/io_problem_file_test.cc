@@ -17,14 +17,14 @@
 #include "io/json_node.h"
 #include "io/problem_file.h"
 #include "path/path.h"
+#include "source_tree.h"
 
 namespace cb {
 namespace {
 
 using nlohmann::json;
 
-const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";
 
 std::filesystem::path TempDir(const std::string& name) {
   auto dir = std::filesystem::temp_directory_path() / ("contactbench_io_" + name);

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "source_tree.h"
+
 namespace {
 
 using cb::harness::ClockText;
@@ -77,7 +79,7 @@ Terminal RunOnTerminal(const std::vector<std::string>& args) {
 }
 
 std::string Example(const std::string& name) {
-  return (std::filesystem::path(__FILE__).parent_path().parent_path() / "examples" / name).string();
+  return (::cb::testing_support::SourceRoot() / "examples" / name).string();
 }
 
 TEST(ProgressTest, OnATerminalEveryRewriteClearsTheLineAndTheSummaryStartsALine) {

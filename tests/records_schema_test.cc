@@ -16,12 +16,12 @@
 
 #include "harness/record_schemas.h"
 #include "harness/records_doc.h"
+#include "source_tree.h"
 
 namespace cb::harness {
 namespace {
 
-const std::filesystem::path kRepository =
-    std::filesystem::path(__FILE__).parent_path().parent_path();
+const std::filesystem::path kRepository = ::cb::testing_support::SourceRoot();
 
 std::string ReadText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -8,10 +8,11 @@
 #include <filesystem>
 #include <string>
 
+#include "source_tree.h"
+
 namespace cb::test_support {
 
-inline const std::filesystem::path kExamples =
-    std::filesystem::path(__FILE__).parent_path().parent_path() / "examples";
+inline const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";
 
 // Runs examples/`example` with implicit-fb (and the options `more`) into the fresh directory
 // TMP/contactbench_`name` and returns it; a failed run fails the calling test.

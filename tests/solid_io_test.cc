@@ -13,11 +13,12 @@
 #include "io/problem_file.h"
 #include "model/solid_hex8.h"
 #include "run_contactbench.h"
+#include "source_tree.h"
 
 namespace cb {
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(__FILE__).parent_path() / "data";
+const std::filesystem::path kData = ::cb::testing_support::SourceRoot() / "tests" / "data";
 
 std::string ReadAll(const std::filesystem::path& file) {
   std::ifstream in(file);
