@@ -65,8 +65,12 @@ std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
     user_options = it->second;
     rest.erase(it);
   }
-  OptionReader reader(name, rest);
-  reader.Finish();
+  try {
+    OptionReader(name, rest).Finish();
+  } catch (const UnknownOptionError& e) {
+    throw UnknownOptionError("unknown " + name + " option '" + e.key() + "' (known: petsc_options)",
+                             e.key(), {"petsc_options"});
+  }
   return std::make_unique<PetscViFormulation>(name, snes_type, user_options);
 }
 
