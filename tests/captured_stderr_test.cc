@@ -62,6 +62,16 @@ TEST(CapturedStderr, HoldsMoreThanThePipeWithoutBlocking) {
   EXPECT_EQ(text.find_first_not_of('x'), written);
 }
 
+TEST(CapturedStderr, ReleasesWhenTheReaderHasAlreadyEnded) {
+  // Restoring descriptor 2 closes the pipe's last write end, so the reader may see end of file
+  // and end before Release tells it to stop: telling it must not raise SIGPIPE then.
+  for (int i = 0; i < 2000; ++i) {
+    CapturedStderr capture;
+    std::fprintf(stderr, "%d\n", i);
+    ASSERT_EQ(capture.Release(), std::to_string(i) + "\n");
+  }
+}
+
 TEST(AbbreviateOutput, KeepsShortTextAndCutsLongTextAtALineEnd) {
   EXPECT_EQ(AbbreviateOutput("one line\n"), "one line");
   std::string lines;

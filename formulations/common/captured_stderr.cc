@@ -64,7 +64,6 @@ CapturedStderr::CapturedStderr() {
     reader_ = std::thread([from = output[0], until = stop[0], text = &text_] {
       Drain(from, until, text);
       close(from);
-      close(until);
     });
   } catch (const std::system_error&) {
     if (saved_ >= 0) close(saved_);
@@ -73,7 +72,8 @@ CapturedStderr::CapturedStderr() {
     CloseBoth(stop);
     return;
   }
-  stop_ = stop[1];
+  stop_[0] = stop[0];
+  stop_[1] = stop[1];
   if (dup2(output[1], STDERR_FILENO) < 0) {
     close(output[1]);
     Release();  // ends the reader; nothing was captured
@@ -90,12 +90,14 @@ std::string CapturedStderr::Release() {
   dup2(saved_, STDERR_FILENO);
   close(saved_);
   saved_ = -1;
+  // The reader may have ended already (end of file once descriptor 2 is restored): the stop
+  // pipe's read end stays open until it is joined, so this write cannot raise SIGPIPE.
   const char done = 0;
-  while (write(stop_, &done, 1) < 0 && errno == EINTR) {
+  while (write(stop_[1], &done, 1) < 0 && errno == EINTR) {
   }
-  close(stop_);
-  stop_ = -1;
   reader_.join();
+  CloseBoth(stop_);
+  stop_[0] = stop_[1] = -1;
   std::string text = std::move(text_);
   text_.clear();
   return text;

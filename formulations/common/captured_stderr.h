@@ -24,8 +24,8 @@ class CapturedStderr {
   std::string Release();
 
  private:
-  int saved_ = -1;  // the original standard error, while captured
-  int stop_ = -1;   // tells the reader that standard error is restored
+  int saved_ = -1;          // the original standard error, while captured
+  int stop_[2] = {-1, -1};  // a pipe that tells the reader standard error is restored
   std::thread reader_;
   std::string text_;  // the reader's until it is joined
 };
