@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <string>
 
@@ -28,6 +29,47 @@ TEST(CapturedStderr, RestoresStandardErrorOnRelease) {
   CapturedStderr second;
   std::fprintf(stderr, "second\n");
   EXPECT_EQ(second.Release(), "second\n");
+}
+
+TEST(CapturedStderr, PrintsNothingOfWhatItHolds) {
+  // An outer capture stands for the terminal: what the inner one holds never reaches it.
+  CapturedStderr terminal;
+  {
+    CapturedStderr inner;
+    std::fprintf(stderr, "held\n");
+    EXPECT_EQ(inner.Release(), "held\n");
+  }
+  std::fprintf(stderr, "after\n");
+  EXPECT_EQ(terminal.Release(), "after\n");
+}
+
+TEST(CapturedStderr, HoldsMoreThanThePipeWithoutBlocking) {
+  // Many times a pipe's capacity (64 KiB on Linux), written while the capture is in scope: the
+  // writer would block for good if nothing drained the pipe until Release.
+  const std::size_t size = 4 << 20;
+  const std::string chunk(1000, 'x');
+  CapturedStderr capture;
+  std::size_t written = 0;
+  while (written < size) {
+    const ssize_t got = write(STDERR_FILENO, chunk.data(), chunk.size());
+    ASSERT_GT(got, 0);
+    written += static_cast<std::size_t>(got);
+  }
+  std::fprintf(stderr, "end\n");
+  const std::string text = capture.Release();
+  EXPECT_EQ(text.size(), written + 4);
+  EXPECT_EQ(text.substr(text.size() - 4), "end\n");
+  EXPECT_EQ(text.find_first_not_of('x'), written);
+}
+
+TEST(CapturedStderr, ReleasesWhenTheReaderHasAlreadyEnded) {
+  // Restoring descriptor 2 closes the pipe's last write end, so the reader may see end of file
+  // and end before Release tells it to stop: telling it must not raise SIGPIPE then.
+  for (int i = 0; i < 2000; ++i) {
+    CapturedStderr capture;
+    std::fprintf(stderr, "%d\n", i);
+    ASSERT_EQ(capture.Release(), std::to_string(i) + "\n");
+  }
 }
 
 TEST(AbbreviateOutput, KeepsShortTextAndCutsLongTextAtALineEnd) {

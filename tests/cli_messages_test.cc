@@ -83,6 +83,19 @@ TEST(CliMessagesTest, AMistypedNameSuggestsTheClosestValidOne) {
        "did you mean 'newton'?"},
       {"compare --problem block --formulations implicit-fb,nonsmoth-fb --out " + dir,
        "did you mean 'nonsmooth-fb'?"},
+      // A problem parameter (--set), of a named problem and of a problem file.
+      {"run --problem block --set youngs_modulos=1 --formulation implicit-fb --out " + dir,
+       "did you mean 'youngs_modulus'?"},
+      {"run --problem-file " + (kExamples / "truss-2d-bar-wall.json").string() +
+           " --set arc_lenght=0.1 --formulation implicit-fb --out " + dir,
+       "did you mean 'arc_length'?"},
+      // A formulation's own option (--option), in run and in compare.
+      {"run --problem block --formulation implicit-fb --option gama_tol=1e-3 --out " + dir,
+       "did you mean 'gamma_tol'?"},
+      {"compare --problem block --formulations implicit-fb,nonsmooth-fb --option "
+       "implicit-fb:rho_mn=1e-9 --out " +
+           dir,
+       "did you mean 'rho_min'?"},
   };
   for (const Case& c : cases) {
     const Outcome o = RunCli(c.args);

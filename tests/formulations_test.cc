@@ -143,7 +143,6 @@ constexpr KnownLimitation kKnownLimitations[] = {
      "LD_LBFGS on the merit does not reach the 1e-8 verdict near the kink (step 40)"},
     {"nlopt-energy", "lcp2", "stops at eq_res ~4e-8 (tolerance reached), above the 1e-8 verdict"},
     {"nlopt-energy", "block_n10", "reaches maxeval with eq_res ~1e-3 on P1 at n = 10"},
-    {"petsc-rsls", "kojima_shindo", "RSLS's line search fails from z0 = (1, 1, 1, 1)"},
     {"petsc-rsls", "two_bar_obstacle_path",
      "where the path turns back at the floor (step ~50) the predictor points into the floor and "
      "the line search stalls; the suite's nonsmooth formulations restart there (method.md 8)"},

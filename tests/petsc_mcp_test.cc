@@ -134,6 +134,35 @@ TEST(PetscMcpTest, TheStartsLieInTheBounds) {
   EXPECT_EQ(warm[l.r()], -2.0 / step.scales.force);
 }
 
+TEST(PetscMcpTest, AWarmStartPutsThePairsClosedAtTheKnownStateAtTheirBound) {
+  // The truss at its zero state, clear of the floor: the predictor's gap g^ = -phi / L > 0.
+  const Problem truss = MakeProblem("two-bar-obstacle");
+  State base = ZeroState(*truss.model);
+  const StepProblem open{truss.model.get(), base, StepConstraint::FixedLoad(0.1), truss.scales};
+  const StepEquationLayout l{open.num_dofs(), open.num_pairs(), false};
+  const McpBounds bounds = MakeMcpBounds(open);
+  Vec phi;
+  truss.model->Gaps(base.u, &phi);
+  ASSERT_GT(-phi[0], 0.0);
+  StartPoint start;
+  start.du = Vec::Zero(l.d);
+  start.r = base.r;
+  EXPECT_EQ(MakeMcpStart(open, start, bounds)[l.g()], -phi[0] / truss.scales.length);
+  // The same predictor from a state where the pair carries a reaction: it starts at g^ = 0, so
+  // that RSLS, which takes a bound as active only within 1e-8 of it, starts with it closed.
+  base.r.setConstant(-2.0);
+  start.r = base.r;
+  const StepProblem closed{truss.model.get(), base, StepConstraint::FixedLoad(0.1), truss.scales};
+  const Vec x = MakeMcpStart(closed, start, bounds);
+  EXPECT_EQ(x[l.g()], 0.0);
+  EXPECT_EQ(x[l.r()], -2.0 / truss.scales.force);
+  // A reaction the verdict cannot tell from zero does not close the pair.
+  base.r.setConstant(-0.1 * kTieReaction * truss.scales.force);
+  start.r = base.r;
+  const StepProblem tiny{truss.model.get(), base, StepConstraint::FixedLoad(0.1), truss.scales};
+  EXPECT_EQ(MakeMcpStart(tiny, start, bounds)[l.g()], -phi[0] / truss.scales.length);
+}
+
 TEST(PetscMcpTest, AWarmStartSendsTiesToTheClosedSide) {
   // P1's pairs touch their obstacles at the zero state with no reaction: every one a tie.
   const Problem block = MakeProblem("block", {{"n", "2"}});

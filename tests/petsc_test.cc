@@ -14,6 +14,8 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fixtures.h"
 #include "formulations/registry.h"
@@ -51,6 +53,68 @@ struct Block {
   StepProblem step{problem.model.get(), ZeroState(*problem.model),
                    StepConstraint::FixedLoad(problem.load), problem.scales};
 };
+
+// A model that forwards to another and counts the stiffness evaluations: one per evaluation of
+// the step equations' Jacobian (StepEquationSystem::Jacobian assembles the stiffness once).
+class StiffnessCountingModel final : public ContactModel {
+ public:
+  explicit StiffnessCountingModel(const ContactModel& inner) : inner_(inner) {}
+  int num_dofs() const override { return inner_.num_dofs(); }
+  int num_pairs() const override { return inner_.num_pairs(); }
+  bool has_energy() const override { return inner_.has_energy(); }
+  bool is_linear() const override { return inner_.is_linear(); }
+  double Energy(const Vec& u) const override { return inner_.Energy(u); }
+  void InternalForce(const Vec& u, Vec* f) const override { inner_.InternalForce(u, f); }
+  void Stiffness(const Vec& u, SpMat* k) const override {
+    ++evaluations;
+    inner_.Stiffness(u, k);
+  }
+  std::vector<std::pair<int, int>> StiffnessEntries() const override {
+    return inner_.StiffnessEntries();
+  }
+  void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override {
+    ++evaluations;
+    inner_.AddStiffness(u, scale, slots, values);
+  }
+  void Gaps(const Vec& u, Vec* phi) const override { inner_.Gaps(u, phi); }
+  void GapJacobian(const Vec& u, SpMat* j) const override { inner_.GapJacobian(u, j); }
+  void GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const override {
+    inner_.GeneralisedReaction(u, r, reaction);
+  }
+  void GapCurvature(const Vec& u, const Vec& r, SpMat* c) const override {
+    inner_.GapCurvature(u, r, c);
+  }
+  void GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const override {
+    inner_.GapsAndReaction(u, r, phi, reaction);
+  }
+  void GapDerivatives(const Vec& u, const Vec& r, SpMat* j, SpMat* c) const override {
+    inner_.GapDerivatives(u, r, j, c);
+  }
+  const Vec& load_pattern() const override { return inner_.load_pattern(); }
+
+  mutable int evaluations = 0;
+
+ private:
+  const ContactModel& inner_;
+};
+
+TEST_P(PetscTest, EvaluatesTheJacobianOnlyWhenPetscAsksForIt) {
+  Block b;
+  StiffnessCountingModel counting(*b.problem.model);
+  StepProblem step = b.step;
+  step.model = &counting;
+  auto formulation = Make(GetParam());
+  // The first solve makes PETSc's operands from the pattern, the second reuses them: neither
+  // evaluates a Jacobian PETSc did not ask for. SNESVI asks once per Newton iteration.
+  for (int solve = 0; solve < 2; ++solve) {
+    counting.evaluations = 0;
+    const StepResult r = formulation->Solve(step, Cold(step));
+    ASSERT_EQ(r.status, Status::kConverged) << r.message;
+    EXPECT_GT(r.counts.iterations, 1);
+    EXPECT_EQ(counting.evaluations, r.counts.jacobian_evals) << "solve " << solve;
+    EXPECT_EQ(r.counts.jacobian_evals, r.counts.iterations) << "solve " << solve;
+  }
+}
 
 TEST_P(PetscTest, SolvesTheBarAgainstTheWallToItsClosedForm) {
   const fixtures::Fixture& f = fixtures::FindFixture("bar_wall");

@@ -129,6 +129,45 @@ std::optional<MemoryEstimate> PredictedEstimate(const RunArguments& a) {
   return EstimateOf(2.0 * (cells + 1.0) * (cells + 1.0), 2.0 * (cells + 1.0));
 }
 
+// The parameters --set may change: a named problem's declared ones, a problem file's as
+// loading it without settings gives them. Empty when there is no such problem.
+std::vector<std::string> SettableParameters(const RunArguments& a) {
+  std::vector<std::string> names;
+  try {
+    Parameters declared;
+    if (!a.problem_file.empty()) {
+      declared = io::LoadProblemFile(a.problem_file).parameters;
+    } else {
+      for (const auto& info : ProblemRegistry()) {
+        if (info.name == a.problem) declared = info.defaults();
+      }
+    }
+    for (const auto& entry : declared.entries()) names.push_back(entry.name);
+  } catch (const std::exception&) {
+    names.clear();  // the file itself is refused: the refusal was not about a setting
+  }
+  return names;
+}
+
+// "; did you mean 'X'?" for the first --set key the problem does not declare, or "". Asked
+// only after the problem was refused.
+std::string SettingSuggestion(const RunArguments& a) {
+  const std::vector<std::string> known = SettableParameters(a);
+  if (known.empty()) return "";
+  for (const auto& setting : a.settings) {
+    if (std::find(known.begin(), known.end(), setting.first) == known.end()) {
+      return DidYouMean(setting.first, known);
+    }
+  }
+  return "";
+}
+
+// A formulation's refusal of its settings, with the closest known key for an unknown one.
+[[noreturn]] void RefuseFormulationSettings(const std::invalid_argument& e) {
+  const auto* unknown = dynamic_cast<const UnknownOptionError*>(&e);
+  throw UsageError(e.what() + (unknown ? DidYouMean(unknown->key(), unknown->known()) : ""));
+}
+
 Problem LoadProblem(const RunArguments& a) {
   const std::string what =
       a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
@@ -139,7 +178,7 @@ Problem LoadProblem(const RunArguments& a) {
     problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
                                       : MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
+    throw InputError(e.what() + SettingSuggestion(a));
   }
   CheckMemory(EstimateOf(problem.model->num_dofs(), problem.model->num_pairs()), what,
               a.allow_memory);
@@ -268,7 +307,7 @@ int Run(const RunArguments& a, RunJson* record) {
   try {
     formulation = MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    RefuseFormulationSettings(e);
   }
   const PathOptions options = MakePathOptions(a, problem);
   std::string refusal;
@@ -380,7 +419,7 @@ int Compare(const RunArguments& a, RunJson* record) {
     }
     reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    RefuseFormulationSettings(e);
   }
   // The reference traces the path every formulation replays: one that cannot take the
   // problem's steps is a bad argument, refused before any work.

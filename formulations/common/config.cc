@@ -67,8 +67,9 @@ void OptionReader::Finish() const {
     if (known_.count(key) == 0) {
       std::string valid;
       for (const auto& k : known_) valid += (valid.empty() ? "" : ", ") + k;
-      throw std::invalid_argument("unknown " + formulation_ + " option '" + key +
-                                  "' (known: " + (valid.empty() ? "none" : valid) + ")");
+      throw UnknownOptionError("unknown " + formulation_ + " option '" + key +
+                                   "' (known: " + (valid.empty() ? "none" : valid) + ")",
+                               key, std::vector<std::string>(known_.begin(), known_.end()));
     }
   }
 }

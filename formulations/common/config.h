@@ -5,7 +5,9 @@
 
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solvers/equation_solver.h"
@@ -19,8 +21,22 @@ struct FormulationConfig {
   std::map<std::string, std::string> options;  // backend-specific KEY=VALUE
 };
 
+// A key no reader of a formulation's options knows: the message lists the known keys, which
+// `known` holds for a caller that suggests the closest.
+class UnknownOptionError : public std::invalid_argument {
+ public:
+  UnknownOptionError(const std::string& message, std::string key, std::vector<std::string> known)
+      : std::invalid_argument(message), key_(std::move(key)), known_(std::move(known)) {}
+  const std::string& key() const { return key_; }
+  const std::vector<std::string>& known() const { return known_; }
+
+ private:
+  std::string key_;
+  std::vector<std::string> known_;
+};
+
 // Typed access to FormulationConfig::options. Every Get* records the key as known; Finish()
-// throws std::invalid_argument naming any key that was given but never read, with the list of
+// throws UnknownOptionError naming any key that was given but never read, with the list of
 // known ones. Bad values throw std::invalid_argument naming the key.
 class OptionReader {
  public:

@@ -151,6 +151,82 @@ bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
   return residual->allFinite();
 }
 
+bool StepEquationSystem::CacheHoldsThisSystem() const {
+  const PatternCache& cache = *cache_;
+  const StepConstraint& c = step_.constraint;
+  return cache.model == step_.model && cache.kind == c.kind && cache.index == c.index &&
+         cache.has_rho == layout_.has_rho && cache.nnz_curvature >= 0;
+}
+
+const SpMat& StepEquationSystem::JacobianPattern(const Vec& x) {
+  if (!CacheHoldsThisSystem()) {
+    // The blocks' patterns depend on neither u nor r (ContactModel::GapCurvature), so those
+    // at x serve; the stiffness enters through its entries alone.
+    const auto unknowns = Split(x);
+    reaction_force_ = step_.scales.force * unknowns.r;
+    step_.model->GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
+    BuildPattern();
+  }
+  return cache_->pattern.pattern();
+}
+
+void StepEquationSystem::BuildPattern() {
+  const ContactModel& model = *step_.model;
+  const StepEquationLayout& l = layout_;
+  const int row3 = l.complementarity_row();
+  const int row5 = l.constraint_row();
+  const StepConstraint& c = step_.constraint;
+  PatternCache& cache = *cache_;
+  // Entries in the order the fill below adds them.
+  std::vector<ScatterPattern::Entry> e;
+  cache.first_stiffness = e.size();
+  const std::vector<std::pair<int, int>> stiffness_entries = model.StiffnessEntries();
+  e.insert(e.end(), stiffness_entries.begin(), stiffness_entries.end());
+  cache.first_curvature = e.size();
+  AppendBlockEntries(curvature_, 0, 0, false, &e);
+  cache.first_gap_t = e.size();
+  AppendBlockEntries(gap_jacobian_, 0, l.r(), true, &e);
+  cache.first_gap = e.size();
+  AppendBlockEntries(gap_jacobian_, l.d, 0, false, &e);
+  cache.first_rest = e.size();
+  cache.load_rows.clear();
+  const Vec& f = model.load_pattern();
+  for (int i = 0; i < l.d; ++i) {
+    if (f[i] != 0.0) cache.load_rows.push_back(i);
+  }
+  for (int i : cache.load_rows) e.emplace_back(i, l.dlambda());
+  for (int p = 0; p < l.nc; ++p) e.emplace_back(l.d + p, l.g() + p);
+  for (int p = 0; p < l.nc; ++p) {
+    e.emplace_back(row3 + p, l.g() + p);
+    e.emplace_back(row3 + p, l.r() + p);
+    if (l.has_rho) e.emplace_back(row3 + p, l.rho());
+  }
+  if (l.has_rho) AppendExtraRowEntries(&e);
+  switch (c.kind) {
+    case ConstraintKind::kArcLength:
+      for (int j = 0; j < l.d; ++j) e.emplace_back(row5, j);
+      e.emplace_back(row5, l.dlambda());
+      break;
+    case ConstraintKind::kFixedLoad:
+      e.emplace_back(row5, l.dlambda());
+      break;
+    case ConstraintKind::kDisplacement:
+      e.emplace_back(row5, c.index);
+      break;
+    case ConstraintKind::kKink:
+      e.emplace_back(row5, l.g() + c.index);
+      e.emplace_back(row5, l.r() + c.index);
+      break;
+  }
+  cache.pattern = ScatterPattern(l.size(), l.size(), e);
+  cache.model = &model;
+  cache.kind = c.kind;
+  cache.index = c.index;
+  cache.has_rho = l.has_rho;
+  cache.nnz_curvature = curvature_.nonZeros();
+  cache.nnz_gap = gap_jacobian_.nonZeros();
+}
+
 void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   const auto [du, g, r, dlambda, rho] = Split(x);
   const ContactModel& model = *step_.model;
@@ -160,61 +236,11 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   reaction_force_ = force * r;
   model.GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
 
-  const int row3 = l.complementarity_row();
-  const int row5 = l.constraint_row();
   const StepConstraint& c = step_.constraint;
   PatternCache& cache = *cache_;
-  if (cache.model != &model || cache.kind != c.kind || cache.index != c.index ||
-      cache.has_rho != l.has_rho || cache.nnz_curvature != curvature_.nonZeros() ||
+  if (!CacheHoldsThisSystem() || cache.nnz_curvature != curvature_.nonZeros() ||
       cache.nnz_gap != gap_jacobian_.nonZeros()) {
-    // Entries in the order the fill below adds them.
-    std::vector<ScatterPattern::Entry> e;
-    cache.first_stiffness = e.size();
-    const std::vector<std::pair<int, int>> stiffness_entries = model.StiffnessEntries();
-    e.insert(e.end(), stiffness_entries.begin(), stiffness_entries.end());
-    cache.first_curvature = e.size();
-    AppendBlockEntries(curvature_, 0, 0, false, &e);
-    cache.first_gap_t = e.size();
-    AppendBlockEntries(gap_jacobian_, 0, l.r(), true, &e);
-    cache.first_gap = e.size();
-    AppendBlockEntries(gap_jacobian_, l.d, 0, false, &e);
-    cache.first_rest = e.size();
-    cache.load_rows.clear();
-    const Vec& f = model.load_pattern();
-    for (int i = 0; i < l.d; ++i) {
-      if (f[i] != 0.0) cache.load_rows.push_back(i);
-    }
-    for (int i : cache.load_rows) e.emplace_back(i, l.dlambda());
-    for (int p = 0; p < l.nc; ++p) e.emplace_back(l.d + p, l.g() + p);
-    for (int p = 0; p < l.nc; ++p) {
-      e.emplace_back(row3 + p, l.g() + p);
-      e.emplace_back(row3 + p, l.r() + p);
-      if (l.has_rho) e.emplace_back(row3 + p, l.rho());
-    }
-    if (l.has_rho) AppendExtraRowEntries(&e);
-    switch (c.kind) {
-      case ConstraintKind::kArcLength:
-        for (int j = 0; j < l.d; ++j) e.emplace_back(row5, j);
-        e.emplace_back(row5, l.dlambda());
-        break;
-      case ConstraintKind::kFixedLoad:
-        e.emplace_back(row5, l.dlambda());
-        break;
-      case ConstraintKind::kDisplacement:
-        e.emplace_back(row5, c.index);
-        break;
-      case ConstraintKind::kKink:
-        e.emplace_back(row5, l.g() + c.index);
-        e.emplace_back(row5, l.r() + c.index);
-        break;
-    }
-    cache.pattern = ScatterPattern(l.size(), l.size(), e);
-    cache.model = &model;
-    cache.kind = c.kind;
-    cache.index = c.index;
-    cache.has_rho = l.has_rho;
-    cache.nnz_curvature = curvature_.nonZeros();
-    cache.nnz_gap = gap_jacobian_.nonZeros();
+    BuildPattern();
   }
 
   const std::vector<int>& slots = cache.pattern.slots();

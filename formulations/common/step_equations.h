@@ -90,6 +90,10 @@ class StepEquationSystem : public EquationSystem {
   const JacobianStructure* structure() const final {
     return has_structure_ ? &structure_ : nullptr;
   }
+  // The pattern Jacobian() fills (its values unspecified): the cached one when the cache holds
+  // this system's, otherwise built from the blocks' patterns at x without evaluating the
+  // stiffness or any value of the Jacobian.
+  const SpMat& JacobianPattern(const Vec& x);
   const StepEquationLayout& layout() const { return layout_; }
   const StepProblem& step() const { return step_; }
 
@@ -122,6 +126,10 @@ class StepEquationSystem : public EquationSystem {
     double dlambda, rho;  // rho = 0 without rho
   };
   Unknowns Split(const Vec& x);
+  // Whether the cache holds the pattern of this model, constraint and layout.
+  bool CacheHoldsThisSystem() const;
+  // The cache's pattern from the blocks' patterns in curvature_ and gap_jacobian_.
+  void BuildPattern();
 
   const StepProblem& step_;
   StepEquationLayout layout_;

@@ -37,8 +37,17 @@ if(CONTACTBENCH_HAVE_PETSC)
   target_link_libraries(contactbench_formulations PRIVATE PkgConfig::PETSC MPI::MPI_CXX)
   # For code that asks at compile time (the tests); the formulations ask PetscAvailable().
   target_compile_definitions(contactbench_formulations PUBLIC CONTACTBENCH_HAVE_PETSC=1)
+  # The installed (static) library needs PETSc whichever components a consumer asks for; not
+  # finding it makes the package not found, with the reason.
   string(APPEND CONTACTBENCH_FIND_DEPENDENCIES
-    "find_dependency(PkgConfig)\npkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)\n"
+    "find_dependency(PkgConfig)\npkg_check_modules(PETSC QUIET IMPORTED_TARGET PETSc)\n"
+    "if(NOT PETSC_FOUND)\n"
+    "  set(contactbench_FOUND FALSE)\n"
+    "  set(contactbench_NOT_FOUND_MESSAGE \"contactbench was built with PETSc, whose PETSc.pc "
+    "pkg-config does not find (add ${CONTACTBENCH_PETSC_DIR}/lib/pkgconfig to "
+    "PKG_CONFIG_PATH)\")\n"
+    "  return()\n"
+    "endif()\n"
     "set(MPI_CXX_SKIP_MPICXX ON)\nfind_dependency(MPI COMPONENTS CXX)\n")
 else()
   target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_stub.cc)

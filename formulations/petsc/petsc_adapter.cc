@@ -361,9 +361,10 @@ void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const Solv
   PetscErrorCapture capture;
   Objects& o = *objects_;
   SnesViRun run(system, bounds, o.rows, controls, *result);
-  // The pattern at the start: the operands are remade only when it is not the last one.
-  system.Jacobian(*x, &run.jacobian);
-  if (o.x == nullptr || !SamePattern(o.rows, run.jacobian)) o.Make(system.layout(), run.jacobian);
+  // The operands are remade only when the step equations' pattern is not the last one; the
+  // pattern comes from their cache, so PETSc's evaluations are the only ones.
+  const SpMat& pattern = system.JacobianPattern(*x);
+  if (o.x == nullptr || !SamePattern(o.rows, pattern)) o.Make(system.layout(), pattern);
   CopyBound(bounds.lower, o.lower);
   CopyBound(bounds.upper, o.upper);
   CopyOut(*x, o.x);

@@ -52,6 +52,10 @@ Vec MakeMcpStart(const StepProblem& step, const StartPoint& start, const McpBoun
     x.segment(l.g(), l.nc).setZero();
     x.segment(l.r(), l.nc).setConstant(-1.0);
   }
+  for (int p = 0; p < l.nc; ++p) {
+    const bool closed = x[l.r() + p] < -kTieReaction && std::isfinite(bounds.lower[l.g() + p]);
+    if (closed) x[l.g() + p] = bounds.lower[l.g() + p];  // see the header
+  }
   x = x.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
   for (int p = 0; p < l.nc; ++p) {
     const bool tie = x[l.g() + p] == bounds.lower[l.g() + p] && x[l.r() + p] == 0.0;

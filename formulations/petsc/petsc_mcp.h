@@ -68,10 +68,15 @@ McpBounds MakeMcpBounds(const StepProblem& step);
 // The start in the MCP's unknowns, inside its bounds (SNESVI starts from a feasible point):
 //  warm: docs/method.md section 4, (38)-(41) (MakeStepEquationStart), g^0 = max(-phi(u0) / L, 0):
 //        (30) and the step constraint hold, except where the predictor penetrates. A pair
-//        touching at u0 with no reaction yet (g^0 = 0, r^0 = 0: P1's pairs at the zero state) is
-//        a tie, and SNESVI counts a bounded unknown with F = 0 as free; it starts at
-//        r^0 = -kTieReaction instead, so that it starts closed, as the suite's active-set sends
-//        ties to the active set (docs/method.md section 8);
+//        closed at the known state (r^0 = r^k / R < 0) starts at its bound, g^0 = 0, whatever
+//        gap the predictor leaves: RSLS counts a bounded unknown as active only within an
+//        absolute 1e-8 of its bound, and a node sliding on a curved obstacle leaves its surface
+//        along the linear predictor by a gap of second order in the step (P3: g^0 ~ 4e-8), so
+//        the pair would start free, its rows asking for r^ = 0, and the line search crawls
+//        (docs/backend-petsc.md). A pair touching at u0 with no reaction yet (g^0 = 0, r^0 = 0:
+//        P1's pairs at the zero state) is a tie, and SNESVI counts a bounded unknown with F = 0
+//        as free; it starts at r^0 = -kTieReaction instead, so that it starts closed, as the
+//        suite's active-set sends ties to the active set (docs/method.md section 8);
 //  cold: du0 = 0, dlambda0 fitted to the constraint, the report's g^0 = -1 projected onto the
 //        bound, g^0 = 0, and r^0 = -1 (the report's magnitude with a reaction's sign): every pair
 //        starts closed (F2_p = 1 + phi_p / L > 0 at its bound), so RSLS's first system is the

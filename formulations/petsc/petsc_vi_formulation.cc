@@ -1,11 +1,11 @@
 // The formulation petsc-rsls and petsc-ssls share: the step as the MCP of petsc_mcp.h, handed to
 // one SNESVI (petsc_adapter.h) that the formulation keeps across the steps of a path.
 //
-// Starts (MakeMcpStart): warm, docs/method.md section 4, (38)-(41), with r^0 = min(r^k / R, 0);
-// SNESVI has no separate input for an active set, so the previous step's contact status enters
-// through that point: the pairs open at the known state (r^k = 0) start at their bound r^ = 0,
-// which is where RSLS's first active set comes from. Cold: du0 = 0, dlambda0 fitted to the
-// constraint, g^0 = +1, r^0 = -1. What is reused from one step to the next is the formulation's
+// Starts (MakeMcpStart, petsc_mcp.h): warm, docs/method.md section 4, (38)-(41); SNESVI has no
+// separate input for an active set, so the previous step's contact status enters through that
+// point: pairs open at the known state start at r^ = 0, closed ones at their bound g^ = 0, which
+// is where RSLS's first active set comes from. Cold: du0 = 0, dlambda0 fitted to the
+// constraint, g^0 = 0, r^0 = -1. What is reused from one step to the next is the formulation's
 // own: the SNES, the preallocated AIJ matrix (the pattern set once per path) and the step
 // equations' pattern cache; StepResult::warm_state stays empty.
 #include <map>
@@ -65,8 +65,12 @@ std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
     user_options = it->second;
     rest.erase(it);
   }
-  OptionReader reader(name, rest);
-  reader.Finish();
+  try {
+    OptionReader(name, rest).Finish();
+  } catch (const UnknownOptionError& e) {
+    throw UnknownOptionError("unknown " + name + " option '" + e.key() + "' (known: petsc_options)",
+                             e.key(), {"petsc_options"});
+  }
   return std::make_unique<PetscViFormulation>(name, snes_type, user_options);
 }
 

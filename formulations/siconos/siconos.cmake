@@ -31,6 +31,14 @@ if(CONTACTBENCH_HAVE_SICONOS)
   target_link_libraries(contactbench_formulations PRIVATE ${SICONOS_NUMERICS_LIBRARY})
   # For code that asks at compile time (the tests); the formulations ask SiconosAvailable().
   target_compile_definitions(contactbench_formulations PUBLIC CONTACTBENCH_HAVE_SICONOS=1)
+  # The installed (static) library links the numerics library by its path.
+  string(APPEND CONTACTBENCH_FIND_DEPENDENCIES
+    "if(NOT EXISTS \"${SICONOS_NUMERICS_LIBRARY}\")\n"
+    "  set(contactbench_FOUND FALSE)\n"
+    "  set(contactbench_NOT_FOUND_MESSAGE \"contactbench was built with Siconos numerics, "
+    "which is no longer at ${SICONOS_NUMERICS_LIBRARY}\")\n"
+    "  return()\n"
+    "endif()\n")
 else()
   target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/siconos_stub.cc)
 endif()
