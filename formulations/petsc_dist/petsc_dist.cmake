@@ -1,0 +1,5 @@
+# The distributed formulations (dist-*): the step systems over MPI with PETSc (petsc-dev, the
+# PETSc of petsc.cmake, included before this file). With PETSc: the distributed system and
+# the formulations; without: the stub, whose DistAvailable() is false. The element partition
+# needs no PETSc and is built either way (its tests run in every build).
+target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/element_partition.cc)
