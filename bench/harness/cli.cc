@@ -395,6 +395,7 @@ int Compare(const RunArguments& a, RunJson* record) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
   // The reference traces the path every formulation replays: one that cannot take the
   // problem's steps is a bad argument, refused before any work.
   std::string refusal;
