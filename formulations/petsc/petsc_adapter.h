@@ -50,6 +50,7 @@
 
 #include <petscsnes.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -65,6 +66,21 @@ void StartPetsc();
 // The status of a SNESConvergedReason; its PETSc name ("CONVERGED_FNORM_ABS").
 Status MapSnesReason(SNESConvergedReason reason);
 std::string SnesReasonName(SNESConvergedReason reason);
+
+// Takes the backend option `petsc_options` (free text in PETSc's syntax) out of `options`, so
+// that the typed OptionReader then refuses any other key; "" when it is not given.
+std::string TakePetscOptions(std::map<std::string, std::string>* options);
+
+// After SNESSolve: `result`'s counts from PETSc's counters (`jacobian_evals` the callbacks'),
+// details petsc_reason and petsc_options, and status and message ("<label>: <reason>"), or,
+// when the run was `stopped` by the controls, kTimeLimit / kStoppedByCaller with the iteration.
+struct SnesStop {
+  bool stopped = false;
+  bool timed_out = false;
+  double time_limit_s = 0.0;
+};
+void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options,
+                       const std::string& label, const SnesStop& stop, StepResult* result);
 
 // The defaults of the top of the file for `snes_type`, then `user` (PETSc's option syntax).
 std::string PetscViOptions(const std::string& snes_type, const std::string& user);

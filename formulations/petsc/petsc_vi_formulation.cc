@@ -60,11 +60,7 @@ std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
   // `petsc_options` is free text (PETSc's syntax), so it is taken out before the typed reader,
   // which then refuses any other key.
   std::map<std::string, std::string> rest = config.options;
-  std::string user_options;
-  if (auto it = rest.find("petsc_options"); it != rest.end()) {
-    user_options = it->second;
-    rest.erase(it);
-  }
+  const std::string user_options = TakePetscOptions(&rest);
   OptionReader reader(name, rest);
   reader.Finish();
   return std::make_unique<PetscViFormulation>(name, snes_type, user_options);

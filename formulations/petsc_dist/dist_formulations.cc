@@ -16,6 +16,7 @@
 
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/petsc/petsc_adapter.h"
 #include "formulations/petsc/petsc_mcp.h"
 #include "formulations/petsc_dist/dist_steps.h"
 #include "formulations/petsc_dist/petsc_dist.h"
@@ -138,11 +139,7 @@ class DistFormulation final : public Formulation {
 std::unique_ptr<Formulation> MakeDist(const std::string& name, DistKind kind,
                                       const FormulationConfig& config) {
   std::map<std::string, std::string> rest = config.options;
-  std::string user_options;
-  if (auto it = rest.find("petsc_options"); it != rest.end()) {
-    user_options = it->second;
-    rest.erase(it);
-  }
+  const std::string user_options = TakePetscOptions(&rest);
   OptionReader reader(name, rest);
   ImplicitFbOptions options;
   options.eta = static_cast<EtaCase>(config.eta);

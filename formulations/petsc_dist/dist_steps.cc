@@ -495,31 +495,15 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.Gather(o.x);
   *x = o.full;
 
-  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-  PetscInt iterations = 0, funcs = 0, linear = 0;
-  SNESGetConvergedReason(o.snes, &reason);
-  SNESGetIterationNumber(o.snes, &iterations);
-  SNESGetNumberFunctionEvals(o.snes, &funcs);
-  SNESGetLinearSolveIterations(o.snes, &linear);
-  result->counts = {static_cast<int>(iterations), static_cast<int>(funcs), o.jacobian_evals,
-                    static_cast<int>(linear)};
-  result->details["petsc_reason"] =
-      std::to_string(static_cast<int>(reason)) + " " + SnesReasonName(reason);
-  result->details["petsc_options"] = options_;
+  RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES",
+                    {o.stopped, o.timed_out, controls.time_limit_s}, result);
   result->details["processes"] = std::to_string(DistributedSize());
-  result->status = MapSnesReason(reason);
-  result->message = "PETSc SNES: " + SnesReasonName(reason);
   if (code != 0) {
     const char* text = nullptr;
     PetscErrorMessage(code, &text, nullptr);
     result->status = Status::kFailed;
     result->message = std::string("PETSc SNESSolve failed: ") + (text != nullptr ? text : "");
     o.DestroyOperands();
-  } else if (o.stopped) {
-    result->status = o.timed_out ? Status::kTimeLimit : Status::kStoppedByCaller;
-    result->message = o.timed_out ? TimeLimitMessage(controls.time_limit_s)
-                                  : std::string("PETSc SNES: stopped by the caller");
-    result->message += " at iteration " + std::to_string(iterations);
   }
 }
 
