@@ -7,6 +7,7 @@
 #include "formulations/nlopt/nlopt.h"
 #include "formulations/nonsmooth/nonsmooth.h"
 #include "formulations/petsc/petsc.h"
+#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/siconos/siconos.h"
 
 namespace cb {
@@ -41,6 +42,16 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        PetscAvailable(), MakePetscRsls},
       {"petsc-ssls", "the step as an MCP, PETSc SNESVINEWTONSSLS (semismooth FB)", PetscAvailable(),
        MakePetscSsls},
+      {"dist-implicit-fb", "implicit-fb's equations distributed over MPI, PETSc SNES newtonls",
+       DistAvailable(), MakeDistImplicitFb},
+      {"dist-nonsmooth-fb", "nonsmooth-fb's equations distributed over MPI, PETSc SNES newtonls",
+       DistAvailable(), MakeDistNonsmoothFb},
+      {"dist-active-set", "active-set's equations distributed over MPI, PETSc SNES newtonls",
+       DistAvailable(), MakeDistActiveSet},
+      {"dist-petsc-rsls", "petsc-rsls's MCP distributed over MPI, SNESVINEWTONRSLS",
+       DistAvailable(), MakeDistPetscRsls},
+      {"dist-petsc-ssls", "petsc-ssls's MCP distributed over MPI, SNESVINEWTONSSLS",
+       DistAvailable(), MakeDistPetscSsls},
   };
   return registry;
 }

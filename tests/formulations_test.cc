@@ -148,6 +148,12 @@ constexpr KnownLimitation kKnownLimitations[] = {
      "the line search stalls; the suite's nonsmooth formulations restart there (method.md 8)"},
     {"petsc-ssls", "two_bar_obstacle_path",
      "as petsc-rsls; with -snes_linesearch_type l2 it traces the path (docs/backend-petsc.md)"},
+    {"dist-nonsmooth-fb", "two_bar_obstacle_path",
+     "the stall of petsc-rsls at step ~50, without nonsmooth-fb's restart (docs/scale-out.md)"},
+    {"dist-active-set", "two_bar_obstacle_path",
+     "the stall of petsc-rsls at step ~50, without active-set's restart (docs/scale-out.md)"},
+    {"dist-petsc-rsls", "two_bar_obstacle_path", "as petsc-rsls"},
+    {"dist-petsc-ssls", "two_bar_obstacle_path", "as petsc-ssls"},
 };
 
 const KnownLimitation* FindLimitation(const std::string& formulation, const std::string& fixture) {

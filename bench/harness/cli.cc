@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "formulations/petsc/petsc.h"
+#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/compare_table.h"
 #include "harness/interrupt.h"
@@ -298,6 +299,14 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   return kExitOk;
 }
 
+// A distributed run's processes other than 0 (petsc_dist.h): the same path, every decision
+// taken on values all processes share, and nothing written.
+int FollowRun(const Problem& problem, Formulation& formulation, const PathOptions& options) {
+  const PathSummary summary = TraceProblem(problem, formulation, options);
+  if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
+  return summary.status == Status::kConverged ? kExitOk : kExitFailure;
+}
+
 int Run(const RunArguments& a, RunJson* record) {
   Problem problem = LoadProblem(a);
   if (!a.petsc_options.empty() && !TakesPetscOptions(a.formulation)) {
@@ -318,6 +327,10 @@ int Run(const RunArguments& a, RunJson* record) {
     throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
                      "' is traced by arc length");
   }
+  if (a.start_near && DistributedSize() > 1) {
+    throw UsageError("--start near: not in a run of several processes");
+  }
+  if (DistributedRank() != 0) return FollowRun(problem, *formulation, options);
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
   record->starts = {a.start_near ? "near" : ToString(a.start)};
@@ -421,6 +434,7 @@ int Compare(const RunArguments& a, RunJson* record) {
   } catch (const std::invalid_argument& e) {
     RefuseFormulationSettings(e);
   }
+  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
   // The reference traces the path every formulation replays: one that cannot take the
   // problem's steps is a bad argument, refused before any work.
   std::string refusal;

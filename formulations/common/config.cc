@@ -28,6 +28,11 @@ double OptionReader::GetReal(const std::string& key, double fallback) {
   return v;
 }
 
+std::string OptionReader::GetText(const std::string& key, const std::string& fallback) {
+  const std::string* text = Find(key);
+  return text == nullptr ? fallback : *text;
+}
+
 int OptionReader::GetInteger(const std::string& key, int fallback) {
   const std::string* text = Find(key);
   if (text == nullptr) return fallback;

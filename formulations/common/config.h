@@ -46,6 +46,8 @@ class OptionReader {
   std::string GetChoice(const std::string& key, const std::string& fallback,
                         const std::vector<std::string>& choices);
   bool GetBool(const std::string& key, bool fallback);
+  // Free text passed through as given (a library's own option syntax).
+  std::string GetText(const std::string& key, const std::string& fallback);
   void Finish() const;
 
  private:

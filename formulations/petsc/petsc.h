@@ -20,9 +20,10 @@ bool PetscAvailable();
 std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig& config);
 
-// The formulations that take the backend option `petsc_options` (the CLI's --petsc-options).
+// The formulations that take the backend option `petsc_options` (the CLI's --petsc-options):
+// petsc-* and the distributed dist-* (formulations/petsc_dist/petsc_dist.h).
 inline bool TakesPetscOptions(const std::string& formulation) {
-  return formulation.rfind("petsc-", 0) == 0;
+  return formulation.rfind("petsc-", 0) == 0 || formulation.rfind("dist-", 0) == 0;
 }
 
 // PETSc starts once per process, on the first PETSc formulation made (an MPI start costs about

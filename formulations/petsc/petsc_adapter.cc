@@ -116,6 +116,29 @@ std::string SnesReasonName(SNESConvergedReason reason) {
              : "reason " + std::to_string(static_cast<int>(reason));
 }
 
+void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options,
+                       const std::string& label, const SnesStop& stop, StepResult* result) {
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PetscInt iterations = 0, funcs = 0, linear = 0;
+  SNESGetConvergedReason(snes, &reason);
+  SNESGetIterationNumber(snes, &iterations);
+  SNESGetNumberFunctionEvals(snes, &funcs);
+  SNESGetLinearSolveIterations(snes, &linear);
+  result->counts = {static_cast<int>(iterations), static_cast<int>(funcs), jacobian_evals,
+                    static_cast<int>(linear)};
+  result->details["petsc_reason"] =
+      std::to_string(static_cast<int>(reason)) + " " + SnesReasonName(reason);
+  result->details["petsc_options"] = options;
+  result->status = MapSnesReason(reason);
+  result->message = label + ": " + SnesReasonName(reason);
+  if (stop.stopped) {
+    result->status = stop.timed_out ? Status::kTimeLimit : Status::kStoppedByCaller;
+    result->message =
+        stop.timed_out ? TimeLimitMessage(stop.time_limit_s) : label + ": stopped by the caller";
+    result->message += " at iteration " + std::to_string(iterations);
+  }
+}
+
 std::string PetscViOptions(const std::string& snes_type, const std::string& user) {
   // See the top of the header for the factorisation of each method.
   const std::string factorisation = snes_type == SNESVINEWTONRSLS ? "umfpack" : "mumps";
@@ -381,30 +404,14 @@ void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const Solv
   if (run.error) std::rethrow_exception(run.error);
   CopyIn(o.x, x);
 
-  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-  PetscInt iterations = 0, funcs = 0, linear = 0;
-  SNESGetConvergedReason(o.snes, &reason);
-  SNESGetIterationNumber(o.snes, &iterations);
-  SNESGetNumberFunctionEvals(o.snes, &funcs);
-  SNESGetLinearSolveIterations(o.snes, &linear);
-  result->counts = {static_cast<int>(iterations), static_cast<int>(funcs), run.jacobian_evals,
-                    static_cast<int>(linear)};
-  result->details["petsc_reason"] =
-      std::to_string(static_cast<int>(reason)) + " " + SnesReasonName(reason);
-  result->details["petsc_options"] = options_;
-  result->status = MapSnesReason(reason);
-  result->message = "PETSc SNESVI: " + SnesReasonName(reason);
+  RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI",
+                    {run.stopped, run.timed_out, controls.time_limit_s}, result);
   if (code != 0) {
     // A PETSc failure inside the solve (e.g. the factorisation): the step fails with it, and
     // the operands are remade on the next solve.
     result->status = Status::kFailed;
     result->message = PetscErrorText(code, "SNESSolve");
     o.DestroyOperands();
-  } else if (run.stopped) {
-    result->status = run.timed_out ? Status::kTimeLimit : Status::kStoppedByCaller;
-    result->message = run.timed_out ? TimeLimitMessage(controls.time_limit_s)
-                                    : std::string("PETSc SNESVI: stopped by the caller");
-    result->message += " at iteration " + std::to_string(iterations);
   }
 }
 

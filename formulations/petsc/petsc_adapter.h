@@ -66,6 +66,17 @@ void StartPetsc();
 Status MapSnesReason(SNESConvergedReason reason);
 std::string SnesReasonName(SNESConvergedReason reason);
 
+// After SNESSolve: `result`'s counts from PETSc's counters (`jacobian_evals` the callbacks'),
+// details petsc_reason and petsc_options, and status and message ("<label>: <reason>"), or,
+// when the run was `stopped` by the controls, kTimeLimit / kStoppedByCaller with the iteration.
+struct SnesStop {
+  bool stopped = false;
+  bool timed_out = false;
+  double time_limit_s = 0.0;
+};
+void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options,
+                       const std::string& label, const SnesStop& stop, StepResult* result);
+
 // The defaults of the top of the file for `snes_type`, then `user` (PETSc's option syntax).
 std::string PetscViOptions(const std::string& snes_type, const std::string& user);
 

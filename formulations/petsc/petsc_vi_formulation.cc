@@ -8,7 +8,6 @@
 // constraint, g^0 = 0, r^0 = -1. What is reused from one step to the next is the formulation's
 // own: the SNES, the preallocated AIJ matrix (the pattern set once per path) and the step
 // equations' pattern cache; StepResult::warm_state stays empty.
-#include <map>
 #include <memory>
 #include <string>
 
@@ -57,20 +56,10 @@ class PetscViFormulation final : public Formulation {
 std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
                                                     const std::string& snes_type,
                                                     const FormulationConfig& config) {
-  // `petsc_options` is free text (PETSc's syntax), so it is taken out before the typed reader,
-  // which then refuses any other key.
-  std::map<std::string, std::string> rest = config.options;
-  std::string user_options;
-  if (auto it = rest.find("petsc_options"); it != rest.end()) {
-    user_options = it->second;
-    rest.erase(it);
-  }
-  try {
-    OptionReader(name, rest).Finish();
-  } catch (const UnknownOptionError& e) {
-    throw UnknownOptionError("unknown " + name + " option '" + e.key() + "' (known: petsc_options)",
-                             e.key(), {"petsc_options"});
-  }
+  // `petsc_options` is free text in PETSc's syntax, passed through as given.
+  OptionReader reader(name, config.options);
+  const std::string user_options = reader.GetText("petsc_options", "");
+  reader.Finish();
   return std::make_unique<PetscViFormulation>(name, snes_type, user_options);
 }
 

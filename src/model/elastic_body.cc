@@ -37,6 +37,12 @@ DofMap::DofMap(int num_nodes, int dim, const std::vector<bool>& fixed)
   num_dofs_ = next;
 }
 
+std::vector<bool> DofMap::FixedComponents() const {
+  std::vector<bool> fixed(map_.size());
+  for (std::size_t k = 0; k < map_.size(); ++k) fixed[k] = map_[k] < 0;
+  return fixed;
+}
+
 Point ElasticBody::Position(int node, const Vec& u) const {
   Point x = reference(node);
   const DofMap& map = dofs();

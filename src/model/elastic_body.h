@@ -3,6 +3,8 @@
 // free dof (an index into u) or fixed at zero (a support).
 #pragma once
 
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +24,8 @@ class DofMap {
 
   int dim() const { return dim_; }
   int num_nodes() const { return num_nodes_; }
+  // The `fixed` flags this map was made from (node * dim + component).
+  std::vector<bool> FixedComponents() const;
   int num_dofs() const { return num_dofs_; }
   int dof(int node, int component) const { return map_[node * dim_ + component]; }
 
@@ -63,9 +67,32 @@ class ElasticBody {
   // none by default.
   virtual std::vector<CellField> CellFields(const Vec& /*u*/) const { return {}; }
 
+  // The same nodes, dofs and material with only `elements` (indices in the order of Cells()):
+  // its energy, internal force and stiffness are those elements' shares, so the bodies of a
+  // partition of the element list sum to this one (a distributed evaluation gives each process
+  // one). Throws std::invalid_argument for an index out of range.
+  virtual std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const = 0;
+
   int num_dofs() const { return dofs().num_dofs(); }
   // Current position X + u of a node; fixed components stay at X.
   Point Position(int node, const Vec& u) const;
 };
+
+// The entries `indices` of a body's element list `all` (ElasticBody::Restricted); an index out of
+// range throws std::invalid_argument naming `body`.
+template <typename Element>
+std::vector<Element> SelectElements(const std::vector<Element>& all,
+                                    const std::vector<int>& indices, const char* body) {
+  std::vector<Element> selected;
+  selected.reserve(indices.size());
+  for (int k : indices) {
+    if (k < 0 || static_cast<std::size_t>(k) >= all.size()) {
+      throw std::invalid_argument(std::string(body) + ": element " + std::to_string(k) +
+                                  " out of range (" + std::to_string(all.size()) + " elements)");
+    }
+    selected.push_back(all[static_cast<std::size_t>(k)]);
+  }
+  return selected;
+}
 
 }  // namespace cb

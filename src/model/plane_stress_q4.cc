@@ -3,6 +3,7 @@
 #include <Eigen/LU>  // 2 x 2 determinant and inverse
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -298,6 +299,13 @@ void AddNodalForce(const DofMap& dofs, int node, const Point& force, Vec* load) 
 }  // namespace cb
 
 namespace cb {
+
+std::shared_ptr<const ElasticBody> PlaneStressQ4::Restricted(
+    const std::vector<int>& elements) const {
+  return std::make_shared<PlaneStressQ4>(coordinates_,
+                                         SelectElements(elements_, elements, "PlaneStressQ4"),
+                                         material_, dofs_.FixedComponents());
+}
 
 std::vector<std::vector<int>> PlaneStressQ4::Cells() const {
   std::vector<std::vector<int>> cells;

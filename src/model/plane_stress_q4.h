@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "model/elastic_body.h"
@@ -38,6 +39,7 @@ class PlaneStressQ4 final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
   // The stress at each element's centre: stress_xx, stress_yy, stress_xy and the von Mises
   // stress of the plane stress state, sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2).
   std::vector<CellField> CellFields(const Vec& u) const override;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -340,6 +341,11 @@ void SolidHex8::AddStiffness(const Vec& u, double scale, const int* slots, doubl
   std::vector<double> tangent(static_cast<std::size_t>(nnz), 0.0);
   AssembleTangent(u, tangent.data());
   for (Eigen::Index i = 0; i < nnz; ++i) values[slots[i]] += scale * tangent[i];
+}
+
+std::shared_ptr<const ElasticBody> SolidHex8::Restricted(const std::vector<int>& elements) const {
+  return std::make_shared<SolidHex8>(coordinates_, SelectElements(elements_, elements, "SolidHex8"),
+                                     material_, kinematics_, dofs_.FixedComponents());
 }
 
 std::vector<std::vector<int>> SolidHex8::Cells() const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "model/elastic_body.h"
@@ -51,6 +52,7 @@ class SolidHex8 final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
   // "von_mises": VonMisesStress(u).
   std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<Element>& elements() const { return elements_; }

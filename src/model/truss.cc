@@ -1,6 +1,7 @@
 #include "model/truss.h"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -225,6 +226,11 @@ void Truss::AddStiffnessOf(const Vec& u, double scale, const int* slots, double*
 }  // namespace cb
 
 namespace cb {
+
+std::shared_ptr<const ElasticBody> Truss::Restricted(const std::vector<int>& elements) const {
+  return std::make_shared<Truss>(coordinates_, SelectElements(members_, elements, "Truss"),
+                                 dofs_.FixedComponents());
+}
 
 std::vector<std::vector<int>> Truss::Cells() const {
   std::vector<std::vector<int>> cells;

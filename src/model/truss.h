@@ -3,6 +3,7 @@
 // Hessian are geometrically exact (large displacements).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/sparse.h"
@@ -36,6 +37,7 @@ class Truss final : public ElasticBody {
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
+  std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
   // axial_force N and axial_stress N / A (Biot stress on the reference area) of each member.
   std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<TrussMember>& members() const { return members_; }

@@ -1,0 +1,173 @@
+// The dist-* formulations: each builds its serial step equations on the contact-only step
+// (dist_steps.h) and its start exactly as its serial counterpart does, and hands both to one
+// DistributedSteps kept across the steps of a path:
+//   dist-implicit-fb    ImplicitFbSystem, start MakeImplicitFbStart ((38)-(43)), SNES newtonls;
+//   dist-nonsmooth-fb   NonsmoothSystem (FB), start MakeStepEquationStart, SNES newtonls;
+//   dist-active-set     NonsmoothSystem (min), the same start, SNES newtonls;
+//   dist-petsc-rsls     the MCP of petsc_mcp.h, start MakeMcpStart, SNESVINEWTONRSLS;
+//   dist-petsc-ssls     the same, SNESVINEWTONSSLS.
+// What the serial ones add around their Newton is not repeated: nonsmooth-fb's restart from the
+// cold start, the serial solvers' choice per start kind (StartSolvers), implicit-fb's
+// alternative solvers (dogleg, quasi-Newton): PETSc's own are chosen with -snes_type.
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "formulations/implicit_fb/implicit_fb.h"
+#include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/petsc/petsc_adapter.h"
+#include "formulations/petsc/petsc_mcp.h"
+#include "formulations/petsc_dist/dist_steps.h"
+#include "formulations/petsc_dist/petsc_dist.h"
+
+namespace cb {
+
+namespace {
+
+enum class DistKind { kImplicitFb, kNonsmoothFb, kActiveSet, kRsls, kSsls };
+
+bool IsVi(DistKind kind) { return kind == DistKind::kRsls || kind == DistKind::kSsls; }
+
+// The defaults of dist_steps.h for a kind.
+std::string DefaultOptions(DistKind kind, const SolverOptions& solver) {
+  const std::string direct = " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
+  if (IsVi(kind)) {
+    return std::string("-snes_type ") +
+           (kind == DistKind::kRsls ? "vinewtonrsls" : "vinewtonssls") + direct +
+           " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
+  }
+  return "-snes_type newtonls -snes_linesearch_type bt" + direct + " -snes_max_it " +
+         std::to_string(solver.max_iterations);
+}
+
+class DistFormulation final : public Formulation {
+ public:
+  DistFormulation(std::string name, DistKind kind, const ImplicitFbOptions& options,
+                  const std::string& user_options)
+      : name_(std::move(name)),
+        kind_(kind),
+        options_(options),
+        steps_(DefaultOptions(kind, options.solver_options), user_options),
+        cache_(StepEquationSystem::MakePatternCache()) {}
+
+  std::string name() const override { return name_; }
+  std::string solver() const override {
+    return IsVi(kind_) ? std::string("petsc-") +
+                             (kind_ == DistKind::kRsls ? "vinewtonrsls" : "vinewtonssls")
+                       : "petsc-newtonls";
+  }
+  std::string settings() const override { return "petsc_options=" + steps_.options(); }
+
+ private:
+  bool DoAccepts(const StepProblem& step, std::string* why) const override {
+    return CanDistribute(step, why);
+  }
+
+  void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
+               StepResult* result) override {
+    const StepProblem& local = steps_.ContactOnlyStep(step);
+    const double tol = options_.solver_options.residual_tol;
+    Vec x;
+    switch (kind_) {
+      case DistKind::kImplicitFb: {
+        const ImplicitFbStart initial = MakeImplicitFbStart(step, start, options_);
+        ImplicitFbSystem system(local, EtaEquation{options_.eta, initial.gamma}, cache_);
+        x = initial.x;
+        steps_.Solve(step, Equations(system), nullptr, tol, controls, &x, result);
+        result->details["gamma"] = std::to_string(initial.gamma);
+        result->details["rho"] = std::to_string(x[system.layout().rho()]);
+        break;
+      }
+      case DistKind::kNonsmoothFb:
+      case DistKind::kActiveSet: {
+        NonsmoothSystem system(local,
+                               kind_ == DistKind::kActiveSet
+                                   ? ComplementarityFunction::kMin
+                                   : ComplementarityFunction::kFischerBurmeister,
+                               cache_);
+        x = MakeStepEquationStart(step, start, system.layout().size());
+        steps_.Solve(step, Equations(system), nullptr, tol, controls, &x, result);
+        break;
+      }
+      case DistKind::kRsls:
+      case DistKind::kSsls: {
+        McpStepEquations system(local, cache_);
+        const McpBounds bounds = MakeMcpBounds(step);
+        x = MakeMcpStart(step, start, bounds);
+        McpRowMap rows;
+        SpMat s;
+        LocalStepEquations equations{
+            [&](const Vec& y, Vec* f) { return McpFunction(system, y, f); },
+            [&](const Vec& y, SpMat* jacobian) {
+              system.Jacobian(y, &s);
+              if (rows.size == 0 || !SamePattern(rows, s)) rows = MakeMcpRowMap(system.layout(), s);
+              *jacobian = McpJacobian(rows, s);
+            },
+            system.layout()};
+        const DistBounds dist_bounds{bounds.lower, bounds.upper};
+        steps_.Solve(step, equations, &dist_bounds, tol, controls, &x, result);
+        break;
+      }
+    }
+    FillPoint(step, x, result);
+  }
+
+  static LocalStepEquations Equations(StepEquationSystem& system) {
+    return {[&system](const Vec& y, Vec* f) { return system.Residual(y, f); },
+            [&system](const Vec& y, SpMat* jacobian) { system.Jacobian(y, jacobian); },
+            system.layout()};
+  }
+
+  // The point in physical units from the scaled unknowns (common/step_equations.h).
+  static void FillPoint(const StepProblem& step, const Vec& x, StepResult* result) {
+    const StepEquationLayout l{step.num_dofs(), step.num_pairs(), false};
+    result->point.du = x.segment(l.du(), l.d);
+    result->point.g = step.scales.length * x.segment(l.g(), l.nc);
+    result->point.r = step.scales.force * x.segment(l.r(), l.nc);
+    result->point.dlambda = x[l.dlambda()];
+  }
+
+  std::string name_;
+  DistKind kind_;
+  ImplicitFbOptions options_;
+  DistributedSteps steps_;
+  std::shared_ptr<StepEquationSystem::PatternCache> cache_;
+};
+
+// `petsc_options` (free text), then the serial counterpart's typed options.
+std::unique_ptr<Formulation> MakeDist(const std::string& name, DistKind kind,
+                                      const FormulationConfig& config) {
+  OptionReader reader(name, config.options);
+  const std::string user_options = reader.GetText("petsc_options", "");
+  ImplicitFbOptions options;
+  options.eta = static_cast<EtaCase>(config.eta);
+  options.solver_options = config.solver_options;
+  if (kind == DistKind::kImplicitFb) {
+    options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
+    options.rho_min = reader.GetReal("rho_min", options.rho_min);
+  }
+  reader.Finish();
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(name + " options: " + why);
+  return std::make_unique<DistFormulation>(name, kind, options, user_options);
+}
+
+}  // namespace
+
+std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig& config) {
+  return MakeDist("dist-implicit-fb", DistKind::kImplicitFb, config);
+}
+std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config) {
+  return MakeDist("dist-nonsmooth-fb", DistKind::kNonsmoothFb, config);
+}
+std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig& config) {
+  return MakeDist("dist-active-set", DistKind::kActiveSet, config);
+}
+std::unique_ptr<Formulation> MakeDistPetscRsls(const FormulationConfig& config) {
+  return MakeDist("dist-petsc-rsls", DistKind::kRsls, config);
+}
+std::unique_ptr<Formulation> MakeDistPetscSsls(const FormulationConfig& config) {
+  return MakeDist("dist-petsc-ssls", DistKind::kSsls, config);
+}
+
+}  // namespace cb

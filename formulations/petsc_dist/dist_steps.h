@@ -1,0 +1,87 @@
+// The distributed step system and its Newton (PETSc SNES over MPI), which every dist-*
+// formulation hands its step to. Built only with PETSc (petsc_dist.cmake).
+//
+// Unknowns and rows are those of common/step_equations.h (du, g^, r^, dlambda[, rho]) in one
+// MPI vector of PETSc's default layout: contiguous row ranges, so that the scalar rows (the rho
+// row (32), the step row (33)) fall to the last process. Each process evaluates
+//   - its own elements' share of (29) / R, the internal force and the stiffness of the body
+//     restricted to its elements (ElasticBody::Restricted, element_partition.h), added into
+//     whatever rows they touch (PETSc sends the entries of other processes' rows), and
+//   - every other term (the load and the contact terms of (29), (30), the complementarity
+//     rows, (32), (33)) on the rows it owns, from the formulation's own serial step equations
+//     on the contact-only model: the same body with no element, the same obstacles and pairs.
+// The latter read the whole iterate, which every evaluation gathers on every process
+// (VecScatterCreateToAll): the problem description and the iterate are replicated, the element
+// work and the matrix are not (docs/scale-out.md says what this limits).
+//
+// The Jacobian is MATMPIAIJ, preallocated through MATPREALLOCATOR from the entries of the
+// first evaluation on a model (its pattern then kept; a later entry outside it is allowed, at
+// the cost of an allocation). Solves: PETSc options, under a prefix of each instance's own
+// ("cbd<k>_"), the defaults then the user's string (--petsc-options):
+//   equations  -snes_type newtonls -snes_linesearch_type bt -ksp_type preonly -pc_type lu
+//              -pc_factor_mat_solver_type mumps -snes_max_it <the solver's max_iterations>
+//   SNESVI     -snes_type vinewtonrsls | vinewtonssls, the same direct solve, -snes_atol 1e-10
+//              -snes_rtol 0 -snes_max_it 200 (the defaults of petsc_adapter.h, with MUMPS,
+//              the parallel factorisation Debian's PETSc has).
+// The stopping test of the equations is the serial solvers' ||F||_inf <= residual_tol; that of
+// SNESVI its own norm below -snes_atol. Every decision (the stopping test, an interrupt, the
+// time limit, a failed evaluation) is taken on values reduced over all processes, so that the
+// processes run the same iterations and return the same StepResult (the verdict then judges
+// the gathered answer identically everywhere). An exception in an evaluation on any process
+// makes every process's evaluation fail together, and SNESSolve returns on all of them.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/sparse.h"
+#include "formulations/common/step_equations.h"
+#include "step/formulation.h"
+
+namespace cb {
+
+// The formulation's serial rows on the contact-only step (see the top of the file).
+struct LocalStepEquations {
+  std::function<bool(const Vec& x, Vec* f)> residual;  // false where not finite
+  std::function<void(const Vec& x, SpMat* jacobian)> jacobian;
+  StepEquationLayout layout;
+};
+
+// The bounds of SNESVI, full vectors (infinite where free); none for the equations.
+struct DistBounds {
+  Vec lower, upper;
+};
+
+class DistributedSteps {
+ public:
+  // `defaults` and then `user_options` (PETSc's syntax); throws std::invalid_argument naming
+  // an option PETSc refuses. Starts PETSc (and MPI) on first use.
+  DistributedSteps(const std::string& defaults, const std::string& user_options);
+  ~DistributedSteps();
+  DistributedSteps(const DistributedSteps&) = delete;
+  DistributedSteps& operator=(const DistributedSteps&) = delete;
+
+  const std::string& options() const { return options_; }
+
+  struct Objects;  // the PETSc objects and one solve's context (dist_steps.cc)
+
+  // The step on the contact-only model of step.model (a BodyContactModel; otherwise
+  // std::invalid_argument), for the formulation's local equations; valid until the next call.
+  const StepProblem& ContactOnlyStep(const StepProblem& step);
+
+  // Solves from *x (full, identical on every process), leaving the last iterate in *x and
+  // filling `result` (status, message, counts, history, details; not the point). With
+  // `bounds`, SNESVI; otherwise converged when ||F||_inf <= residual_tol.
+  void Solve(const StepProblem& step, const LocalStepEquations& equations, const DistBounds* bounds,
+             double residual_tol, const SolveControls& controls, Vec* x, StepResult* result);
+
+ private:
+  std::string options_;
+  std::unique_ptr<Objects> objects_;
+};
+
+// Whether a model can be distributed (a body against obstacles), with the reason if not.
+bool CanDistribute(const StepProblem& step, std::string* why);
+
+}  // namespace cb

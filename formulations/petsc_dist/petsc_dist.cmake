@@ -1,0 +1,16 @@
+# The distributed formulations (dist-*): the step systems over MPI with PETSc (petsc-dev, the
+# PETSc of petsc.cmake, included before this file). With PETSc: the distributed system and
+# the formulations; without: the stub, whose DistAvailable() is false. The element partition
+# needs no PETSc and is built either way (its tests run in every build).
+target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/element_partition.cc)
+if(CONTACTBENCH_HAVE_PETSC)
+  target_sources(contactbench_formulations PRIVATE
+    ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc)
+else()
+  target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_dist_stub.cc)
+endif()
+if(CONTACTBENCH_HAVE_PETSC)
+  # dlsym / dladdr: which library serves MPI and MUMPS (dist_steps.cc).
+  target_link_libraries(contactbench_formulations PRIVATE ${CMAKE_DL_LIBS})
+endif()

@@ -1,0 +1,32 @@
+// The distributed backend: the step systems of the equation formulations and of PETSc's SNESVI
+// over MPI processes (docs/scale-out.md): `dist-implicit-fb`, `dist-nonsmooth-fb`,
+// `dist-active-set` (PETSc SNES newtonls on the rows of implicit-fb, nonsmooth-fb, active-set)
+// and `dist-petsc-rsls`, `dist-petsc-ssls` (SNESVI on the MCP of petsc-rsls / petsc-ssls).
+// Launched with `mpirun -n N contactbench run --formulation dist-...`; without mpirun, one
+// process. Without PETSc, petsc_dist_stub.cc stands in (petsc_dist.cmake chooses).
+#pragma once
+
+#include <memory>
+
+#include "formulations/common/config.h"
+#include "step/formulation.h"
+
+namespace cb {
+
+// Whether this build has the distributed backend (PETSc with MPI).
+bool DistAvailable();
+
+// This process's rank and the number of processes of a distributed run: 0 and 1 until a
+// distributed formulation has started PETSc (and MPI), and always without PETSc.
+int DistributedRank();
+int DistributedSize();
+
+// Registry factories; without PETSc they throw std::invalid_argument. Backend option
+// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h).
+std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig& config);
+std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config);
+std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig& config);
+std::unique_ptr<Formulation> MakeDistPetscRsls(const FormulationConfig& config);
+std::unique_ptr<Formulation> MakeDistPetscSsls(const FormulationConfig& config);
+
+}  // namespace cb

@@ -1,0 +1,25 @@
+// The distributed backend without PETSc: unavailable, one process.
+#include <stdexcept>
+
+#include "formulations/petsc_dist/petsc_dist.h"
+
+namespace cb {
+
+namespace {
+
+[[noreturn]] std::unique_ptr<Formulation> Unavailable() {
+  throw std::invalid_argument("the distributed formulations need PETSc, which this build lacks");
+}
+
+}  // namespace
+
+bool DistAvailable() { return false; }
+int DistributedRank() { return 0; }
+int DistributedSize() { return 1; }
+std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig&) { Unavailable(); }
+std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig&) { Unavailable(); }
+std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig&) { Unavailable(); }
+std::unique_ptr<Formulation> MakeDistPetscRsls(const FormulationConfig&) { Unavailable(); }
+std::unique_ptr<Formulation> MakeDistPetscSsls(const FormulationConfig&) { Unavailable(); }
+
+}  // namespace cb

@@ -1,0 +1,34 @@
+#!/bin/sh
+# Two processes against one (docs/scale-out.md): P1 (block, n = 8) and the first steps of P2
+# (arch-flat) and P3 (arch-curved) run serially with implicit-fb and with mpirun -n 2 with the
+# distributed formulations; the answers must agree (scripts/compare_answers.py). Exits 77 (ctest:
+# skipped) with the reason when this build cannot run several processes.
+# Usage: two_processes.sh CONTACTBENCH MPIEXEC SOURCE_DIR WORK_DIR
+set -u
+bin=$1 mpiexec=$2 source=$3 work=$4
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+rm -rf "$work" && mkdir -p "$work" || exit 1
+
+# run LABEL MPI_PREFIX... -- contactbench arguments
+check() {
+  label=$1 problem=$2 formulation=$3
+  shift 3
+  "$bin" run --problem "$problem" --formulation implicit-fb --out "$work/$label-serial" "$@" \
+    2>"$work/$label-serial.log" || { cat "$work/$label-serial.log"; exit 1; }
+  "$mpiexec" -n 2 "$bin" run --problem "$problem" --formulation "$formulation" \
+    --out "$work/$label-dist" "$@" >"$work/$label-dist.log" 2>&1
+  status=$?
+  if grep -q "needs MPI and MUMPS" "$work/$label-dist.log"; then
+    echo "skipped: $(head -1 "$work/$label-dist.log")"
+    exit 77
+  fi
+  if [ $status -ne 0 ]; then cat "$work/$label-dist.log"; exit 1; fi
+  echo "$label: $formulation on 2 processes against implicit-fb"
+  python3 "$source/scripts/compare_answers.py" "$work/$label-serial" "$work/$label-dist" || exit 1
+}
+
+check p1 block dist-implicit-fb --set n=8
+check p1-rsls block dist-petsc-rsls --set n=8
+check p2 arch-flat dist-implicit-fb --steps 6
+check p3 arch-curved dist-active-set --steps 6
+exit 0
