@@ -37,6 +37,43 @@ TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
   EXPECT_EQ(b.residual_evals, b.iterations + 1);
 }
 
+// Bratu whose residual and Jacobian come from one pass, counting the passes of each kind.
+class OnePassBratu final : public BratuSystem {
+ public:
+  using BratuSystem::BratuSystem;
+  bool Residual(const Vec& u, Vec* f) override {
+    ++residuals;
+    return BratuSystem::Residual(u, f);
+  }
+  void Jacobian(const Vec& u, SpMat* j) override {
+    ++jacobians;
+    BratuSystem::Jacobian(u, j);
+  }
+  bool ResidualAndJacobian(const Vec& u, Vec* f, SpMat* j) override {
+    ++both;
+    BratuSystem::Jacobian(u, j);
+    return BratuSystem::Residual(u, f);
+  }
+  int residuals = 0, jacobians = 0, both = 0;
+};
+
+// With full steps every Jacobian comes from the pass that evaluated the residual at the same
+// point (the start, then each accepted step), and the counts stay those of one Jacobian per
+// iteration.
+TEST(NewtonSolverTest, FullStepsEvaluateResidualAndJacobianInOnePass) {
+  OnePassBratu bratu(1000, 1.0);
+  Vec u = Vec::Zero(1000);
+  SolverOptions options;
+  options.residual_tol = 1e-8;
+  const SolverSummary b = MakeEquationSolver("newton", options)->Solve(bratu, &u);
+  ASSERT_EQ(b.status, Status::kConverged);
+  EXPECT_EQ(bratu.jacobians, 0);
+  EXPECT_EQ(bratu.residuals, 0);
+  EXPECT_EQ(bratu.both, b.iterations + 1);
+  EXPECT_EQ(b.jacobian_evals, b.iterations);
+  EXPECT_EQ(b.residual_evals, b.iterations + 1);
+}
+
 TEST(NewtonSolverTest, ConvergesQuadratically) {
   BratuSystem system(1000, 3.0);  // closer to the turning point (3.51): more nonlinear
   Vec x = Vec::Zero(1000);
