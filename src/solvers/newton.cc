@@ -29,7 +29,8 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
   double merit = 0.0;
   // J(x) comes with F(x) from one pass wherever it will be needed: at the start, and at a full
   // step after the previous full step was accepted (a damped search rarely ends at a = 1, so
-  // its first trial is evaluated alone).
+  // its first trial is evaluated alone). The trial's Jacobian overwrites jacobian_, which the
+  // iteration no longer needs once the step is solved for (no second matrix is kept).
   if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary, &jacobian_)) {
     return summary;
   }
@@ -68,7 +69,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     const internal::LineSearchResult search = internal::BacktrackingLineSearch(
         system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit,
         nonmonotone ? *std::max_element(recent.begin(), recent.end()) : merit, dx_, &x_trial_,
-        &f_trial_, &trial_merit, &summary, damped_in_a_row == 0 ? &jacobian_trial_ : nullptr);
+        &f_trial_, &trial_merit, &summary, damped_in_a_row == 0 ? &jacobian_ : nullptr);
     if (!search.accepted) {
       Finish(
           Status::kFailed,
@@ -81,7 +82,6 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     *x = x_trial_;
     f_.swap(f_trial_);
     jacobian_at_x = search.jacobian_at_trial;
-    if (jacobian_at_x) jacobian_.swap(jacobian_trial_);
     merit = trial_merit;
     recent.push_back(merit);
     if (static_cast<int>(recent.size()) > options_.nonmonotone_window) recent.erase(recent.begin());

@@ -29,7 +29,7 @@ class NewtonSolver final : public EquationSolver {
   std::unique_ptr<LinearSolver> linear_solver_;
   // Kept between iterations and solves so that the Jacobian's storage and the linear solver's
   // symbolic analysis are reused.
-  SpMat jacobian_, jacobian_trial_;
+  SpMat jacobian_;
   Vec f_, dx_, x_trial_, f_trial_;
 };
 
