@@ -34,6 +34,7 @@ class OnePassBratu final : public BratuSystem {
     BratuSystem::Jacobian(u, j);
     return BratuSystem::Residual(u, f);
   }
+  bool shares_residual_and_jacobian() const override { return true; }
   int residuals = 0, jacobians = 0, both = 0;
 };
 

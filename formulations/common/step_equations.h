@@ -85,6 +85,7 @@ class StepEquationSystem : public EquationSystem {
   bool Residual(const Vec& x, Vec* residual) final;
   void Jacobian(const Vec& x, SpMat* jacobian) final;
   bool ResidualAndJacobian(const Vec& x, Vec* residual, SpMat* jacobian) final;
+  bool shares_residual_and_jacobian() const final { return true; }
   // The block structure of JacobianStructure with v = du, coupling = L (dF1/dr^ = -grad phi^T,
   // dF2/ddu = grad phi / L), y = (dlambda[, rho]); offered when the model has an energy (so
   // dF1/ddu is symmetric).
