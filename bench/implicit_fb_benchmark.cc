@@ -10,6 +10,7 @@
 // A run whose answer fails the verdict is skipped with an error, not timed.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#include <time.h>
 
 #include <algorithm>
 #include <fstream>
@@ -59,6 +60,13 @@ double StatusFieldMb(const std::string& field) {
     }
   }
   return -1.0;
+}
+
+// The calling thread's CPU time in seconds.
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // Newton iterations of the accepted arc-length steps of a path.
@@ -184,22 +192,32 @@ void ArchPath(benchmark::State& state, const std::string& problem,
 // refactorisation with the previous pivot order). The benchmark's own time is that
 // factorisation + solve; the counters carry the comparison:
 //  - ratio: whole solves (start, bookkeeping included) / iterations / LU;
-//  - kernel_ratio: one iteration's work alone (Jacobian, factorisation, solve, one residual).
+//  - kernel_ratio: one iteration's work alone (factorisation, solve, and the residual at the new
+//    point with its Jacobian for the next iteration, from one pass as Newton evaluates them at an
+//    accepted full step);
+//  - ratio_cpu, kernel_ratio_cpu: the same from the thread's CPU time, which the load of a shared
+//    machine does not inflate the way it does wall time (the P3 case is single-threaded: KLU
+//    and the evaluations; where CHOLMOD calls a threaded BLAS they leave its threads out).
 void IterationOverFactorization(benchmark::State& state, const StepProblem& step,
                                 const StartPoint& start, const std::string& linear_solver) {
   ImplicitFb formulation(Options(linear_solver));
   StepResult result = formulation.Solve(step, start);  // analysis outside the measurement
-  // Repeat for at least 0.5 s (and 3 solves).
-  auto repeat_for = [](auto&& work) {
+  // Repeat for at least 0.5 s (and 3 solves); the wall time of one repetition, and its thread
+  // CPU time into *cpu when given.
+  auto repeat_for = [](auto&& work, double* cpu = nullptr) {
     Stopwatch clock;
+    const double cpu_start = ThreadCpuSeconds();
     int repeats = 0;
     do {
       work();
       ++repeats;
     } while (repeats < 3 || clock.Seconds() < 0.5);
+    if (cpu != nullptr) *cpu = (ThreadCpuSeconds() - cpu_start) / repeats;
     return clock.Seconds() / repeats;
   };
-  const double per_solve = repeat_for([&] { result = formulation.Solve(step, start); });
+  double per_solve_cpu = 0.0;
+  const double per_solve =
+      repeat_for([&] { result = formulation.Solve(step, start); }, &per_solve_cpu);
   const double per_iteration = per_solve / result.counts.iterations;
   if (!Judge(step, result.point, kTolerance).verified) {
     state.SkipWithError("step not verified");
@@ -217,27 +235,34 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
   auto lu = MakeLinearSolver("klu");
   Vec rhs = Vec::Ones(l.size()), solution;
   lu->Factorize(jacobian);  // analysis outside the measurement
-  const double factorize_solve = repeat_for([&] {
-    lu->Factorize(jacobian);
-    lu->Solve(rhs, &solution);
-  });
+  double factorize_solve_cpu = 0.0;
+  const double factorize_solve = repeat_for(
+      [&] {
+        lu->Factorize(jacobian);
+        lu->Solve(rhs, &solution);
+      },
+      &factorize_solve_cpu);
   // The work of one Newton iteration without the per-step overhead (start point, initial
-  // residual, bookkeeping): Jacobian, factorisation, solve, one trial residual (whose value is
-  // the next iteration's right-hand side), with the solver under test.
+  // residual, bookkeeping): factorisation, solve, and the trial residual with its Jacobian in
+  // one pass (the next iteration's right-hand side and matrix), with the solver under test.
   auto linear = MakeLinearSolver(linear_solver);
   linear->SetStructure(system.structure());
   Vec residual, step_dx;
   system.Residual(x, &residual);
   linear->Factorize(jacobian);
-  const double iteration_kernel = repeat_for([&] {
-    system.Jacobian(x, &jacobian);
-    linear->Factorize(jacobian);
-    linear->Solve(residual, &step_dx);
-    system.Residual(x, &residual);
-  });
-  // The parts of the kernel.
+  double iteration_kernel_cpu = 0.0;
+  const double iteration_kernel = repeat_for(
+      [&] {
+        linear->Factorize(jacobian);
+        linear->Solve(residual, &step_dx);
+        system.ResidualAndJacobian(x, &residual, &jacobian);
+      },
+      &iteration_kernel_cpu);
+  // The parts of the kernel, and the separate evaluations the one pass replaces.
   const double jacobian_us = 1e6 * repeat_for([&] { system.Jacobian(x, &jacobian); });
   const double residual_us = 1e6 * repeat_for([&] { system.Residual(x, &residual); });
+  const double residual_and_jacobian_us =
+      1e6 * repeat_for([&] { system.ResidualAndJacobian(x, &residual, &jacobian); });
   const double factorize_us = 1e6 * repeat_for([&] { linear->Factorize(jacobian); });
   const double solve_us = 1e6 * repeat_for([&] { linear->Solve(residual, &step_dx); });
   for (auto _ : state) {
@@ -247,6 +272,7 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
   }
   state.counters["jacobian_us"] = jacobian_us;
   state.counters["residual_us"] = residual_us;
+  state.counters["residual_and_jacobian_us"] = residual_and_jacobian_us;
   state.counters["factorize_us"] = factorize_us;
   state.counters["solve_us"] = solve_us;
   if (const CondensedSolverStats* stats = CondensedStats(*linear)) {
@@ -261,6 +287,8 @@ void IterationOverFactorization(benchmark::State& state, const StepProblem& step
   state.counters["ratio"] = per_iteration / factorize_solve;
   state.counters["iteration_kernel_us"] = iteration_kernel * 1e6;
   state.counters["kernel_ratio"] = iteration_kernel / factorize_solve;
+  state.counters["ratio_cpu"] = per_solve_cpu / result.counts.iterations / factorize_solve_cpu;
+  state.counters["kernel_ratio_cpu"] = iteration_kernel_cpu / factorize_solve_cpu;
 }
 
 void IterationOverFactorizationBlock(benchmark::State& state, const std::string& linear_solver) {

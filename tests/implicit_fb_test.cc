@@ -180,6 +180,12 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
     fd.col(l.rho()) = Mat(jac).col(l.rho());
   }
   EXPECT_DERIVATIVE_NEAR(Mat(jac), fd, 1e-6);
+  // The one-pass evaluation gives the residual and the Jacobian of the two calls bit for bit.
+  Vec f_both;
+  SpMat jac_both;
+  ASSERT_TRUE(system.ResidualAndJacobian(x, &f_both, &jac_both));
+  EXPECT_EQ((f_both - residual(x)).norm(), 0.0);
+  EXPECT_EQ((Mat(jac_both) - Mat(jac)).norm(), 0.0);
   // A second evaluation elsewhere reuses the pattern and still matches.
   x.segment(0, d) *= -0.5;
   system.Jacobian(x, &jac);

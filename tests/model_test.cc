@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -254,7 +255,22 @@ TEST(ModelTest, PositionAddsDisplacementOnFreeComponentsOnly) {
 void CheckTrussDerivatives(const Truss& truss, double scale, unsigned seed) {
   std::mt19937 rng(seed);
   for (int trial = 0; trial < 3; ++trial) {
-    fd_check::ExpectBodyDerivativesMatch(truss, RandomVec(truss.num_dofs(), scale, &rng), kFdTol);
+    const Vec u = RandomVec(truss.num_dofs(), scale, &rng);
+    fd_check::ExpectBodyDerivativesMatch(truss, u, kFdTol);
+    Vec f;
+    truss.InternalForce(u, &f);
+    // The one-pass call gives the same force and stiffness contributions to the last bit
+    // (each contribution into its own slot here, with a scale).
+    const std::size_t contributions = truss.StiffnessEntries().size();
+    std::vector<int> slots(contributions);
+    std::iota(slots.begin(), slots.end(), 0);
+    std::vector<double> one_pass(contributions, 0.0), separate(contributions, 0.0);
+    Vec f_one_pass;
+    truss.InternalForceAndStiffness(u, &f_one_pass, -2.5, slots.data(), one_pass.data());
+    truss.AddStiffness(u, -2.5, slots.data(), separate.data());
+    EXPECT_EQ((f_one_pass - f).norm(), 0.0);
+    EXPECT_EQ(one_pass, separate);
+    EXPECT_GT(*std::max_element(separate.begin(), separate.end()), 0.0);
   }
 }
 
@@ -645,6 +661,19 @@ TEST(ModelTest, OnePassContactEvaluationsMatchTheSingleOnes) {
     model.ContactModel::GapDerivatives(u, r, &jac_default, &curvature_default);
     EXPECT_EQ((Dense(jac) - Dense(jac_default)).norm(), 0.0);
     EXPECT_EQ((Dense(curvature) - Dense(curvature_default)).norm(), 0.0);
+
+    // Residual and Jacobian parts together, with other weights for the curvature.
+    const Vec curvature_r = 3.0 * RandomVec(model.num_pairs(), 1.0, &rng);
+    model.GapDerivatives(u, curvature_r, &jac_single, &curvature_single);
+    Vec phi_both, reaction_both;
+    SpMat jac_both, curvature_both;
+    model.GapsReactionAndDerivatives(u, r, curvature_r, &phi_both, &reaction_both, &jac_both,
+                                     &curvature_both);
+    EXPECT_EQ((phi_both - phi).norm(), 0.0);
+    EXPECT_EQ((reaction_both - reaction).norm(), 0.0);
+    EXPECT_EQ((Dense(jac_both) - Dense(jac_single)).norm(), 0.0);
+    EXPECT_EQ((Dense(curvature_both) - Dense(curvature_single)).norm(), 0.0);
+    EXPECT_GT((Dense(curvature_both) - Dense(curvature)).norm(), 0.0);
   }
 }
 

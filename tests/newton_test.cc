@@ -17,6 +17,27 @@ using ::cb::fixtures::History;
 using ::cb::fixtures::InfNorm;
 using ::cb::fixtures::RosenbrockSystem;
 
+// Bratu whose residual and Jacobian come from one pass, counting the passes of each kind.
+class OnePassBratu final : public BratuSystem {
+ public:
+  using BratuSystem::BratuSystem;
+  bool Residual(const Vec& u, Vec* f) override {
+    ++residuals;
+    return BratuSystem::Residual(u, f);
+  }
+  void Jacobian(const Vec& u, SpMat* j) override {
+    ++jacobians;
+    BratuSystem::Jacobian(u, j);
+  }
+  bool ResidualAndJacobian(const Vec& u, Vec* f, SpMat* j) override {
+    ++both;
+    BratuSystem::Jacobian(u, j);
+    return BratuSystem::Residual(u, f);
+  }
+  bool shares_residual_and_jacobian() const override { return true; }
+  int residuals = 0, jacobians = 0, both = 0;
+};
+
 TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
   RosenbrockSystem rosenbrock;
   Vec x = RosenbrockSystem::Start();
@@ -25,7 +46,7 @@ TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
   EXPECT_EQ(summary.jacobian_evals, summary.iterations);
   EXPECT_EQ(summary.linear_solves, summary.iterations);
 
-  BratuSystem bratu(1000, 1.0);
+  OnePassBratu bratu(1000, 1.0);
   Vec u = Vec::Zero(1000);
   SolverOptions options;
   options.residual_tol = 1e-8;
@@ -33,8 +54,12 @@ TEST(NewtonSolverTest, OneJacobianAndFactorisationPerIteration) {
   ASSERT_EQ(b.status, Status::kConverged);
   EXPECT_EQ(b.jacobian_evals, b.iterations);
   EXPECT_EQ(b.linear_solves, b.iterations);
-  // Full steps throughout on this mildly nonlinear problem.
+  // Full steps throughout on this mildly nonlinear problem, so every Jacobian came from the pass
+  // that evaluated the residual at the same point (the start, then each accepted step).
   EXPECT_EQ(b.residual_evals, b.iterations + 1);
+  EXPECT_EQ(bratu.both, b.iterations + 1);
+  EXPECT_EQ(bratu.jacobians, 0);
+  EXPECT_EQ(bratu.residuals, 0);
 }
 
 TEST(NewtonSolverTest, ConvergesQuadratically) {

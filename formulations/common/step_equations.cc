@@ -122,14 +122,47 @@ StepEquationSystem::Unknowns StepEquationSystem::Split(const Vec& x) {
 }
 
 bool StepEquationSystem::Residual(const Vec& x, Vec* residual) {
+  const Unknowns unknowns = Split(x);
+  step_.model->InternalForce(u_, &internal_);
+  // grad phi^T r^, without assembling grad phi.
+  step_.model->GapsAndReaction(u_, unknowns.r, &phi_, &reaction_);
+  return FillResidual(x, unknowns, residual);
+}
+
+void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
+  const Unknowns unknowns = Split(x);
+  reaction_force_ = step_.scales.force * unknowns.r;
+  step_.model->GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
+  StartJacobian(jacobian);
+  const std::vector<int>& slots = cache_->pattern.slots();
+  step_.model->AddStiffness(u_, 1.0 / step_.scales.force, slots.data() + cache_->first_stiffness,
+                            jacobian->valuePtr());
+  FillJacobian(x, unknowns, jacobian);
+}
+
+// Each member's kinematics and each pair's obstacle evaluated once for both; the values are
+// those of Residual and Jacobian to the last bit.
+bool StepEquationSystem::ResidualAndJacobian(const Vec& x, Vec* residual, SpMat* jacobian) {
+  const Unknowns unknowns = Split(x);
+  const ContactModel& model = *step_.model;
+  reaction_force_ = step_.scales.force * unknowns.r;
+  model.GapsReactionAndDerivatives(u_, unknowns.r, reaction_force_, &phi_, &reaction_,
+                                   &gap_jacobian_, &curvature_);
+  StartJacobian(jacobian);
+  const std::vector<int>& slots = cache_->pattern.slots();
+  model.InternalForceAndStiffness(u_, &internal_, 1.0 / step_.scales.force,
+                                  slots.data() + cache_->first_stiffness, jacobian->valuePtr());
+  FillJacobian(x, unknowns, jacobian);
+  return FillResidual(x, unknowns, residual);
+}
+
+// The rows from internal_, phi_ and reaction_ at u_.
+bool StepEquationSystem::FillResidual(const Vec& x, const Unknowns& unknowns, Vec* residual) const {
   const ContactModel& model = *step_.model;
   const StepEquationLayout& l = layout_;
   const double length = step_.scales.length;
   const double force = step_.scales.force;
-  const auto [du, g, r, dlambda, rho] = Split(x);
-  model.InternalForce(u_, &internal_);
-  model.GapsAndReaction(u_, r, &phi_, &reaction_);  // grad phi^T r^, without assembling grad phi
-
+  const auto& [du, g, r, dlambda, rho] = unknowns;
   residual->resize(l.size());
   const double lambda = step_.base.lambda + dlambda;
   residual->segment(0, l.d) =
@@ -227,26 +260,29 @@ void StepEquationSystem::BuildPattern() {
   cache.nnz_gap = gap_jacobian_.nonZeros();
 }
 
-void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
-  const auto [du, g, r, dlambda, rho] = Split(x);
-  const ContactModel& model = *step_.model;
-  const StepEquationLayout& l = layout_;
-  const double length = step_.scales.length;
-  const double force = step_.scales.force;
-  reaction_force_ = force * r;
-  model.GapDerivatives(u_, reaction_force_, &gap_jacobian_, &curvature_);
-
-  const StepConstraint& c = step_.constraint;
+// The pattern (built when the cache does not fit this system or the gap blocks' sizes changed)
+// and the Jacobian's values zeroed on it; gap_jacobian_ and curvature_ are current.
+void StepEquationSystem::StartJacobian(SpMat* jacobian) {
   PatternCache& cache = *cache_;
   if (!CacheHoldsThisSystem() || cache.nnz_curvature != curvature_.nonZeros() ||
       cache.nnz_gap != gap_jacobian_.nonZeros()) {
     BuildPattern();
   }
-
-  const std::vector<int>& slots = cache.pattern.slots();
   cache.pattern.Reset(jacobian);
+}
+
+// Every block but the stiffness, which the caller added after StartJacobian.
+void StepEquationSystem::FillJacobian(const Vec& x, const Unknowns& unknowns,
+                                      SpMat* jacobian) const {
+  const ContactModel& model = *step_.model;
+  const StepEquationLayout& l = layout_;
+  const double length = step_.scales.length;
+  const double force = step_.scales.force;
+  const auto& [du, g, r, dlambda, rho] = unknowns;
+  const StepConstraint& c = step_.constraint;
+  const PatternCache& cache = *cache_;
+  const std::vector<int>& slots = cache.pattern.slots();
   // dF1/ddu = (hess pi - sum_p r_p hess phi_p) / R, dF1/dr^ = -grad phi^T.
-  model.AddStiffness(u_, 1.0 / force, slots.data() + cache.first_stiffness, jacobian->valuePtr());
   ScatterBlock(curvature_, -1.0 / force, slots, cache.first_curvature, jacobian);
   ScatterBlock(gap_jacobian_, -1.0, slots, cache.first_gap_t, jacobian);
   // dF2/ddu = grad phi / L.
@@ -257,7 +293,7 @@ void StepEquationSystem::Jacobian(const Vec& x, SpMat* jacobian) {
   for (int p = 0; p < l.nc; ++p) cursor.Add(1.0);           // dF2/dg^
   const int kink_pair = c.kind == ConstraintKind::kKink ? c.index : -1;
   for (int p = 0; p < l.nc; ++p) {
-    if (p == kink_pair) {  // the row g^ + r^ of the kink pair (see Residual)
+    if (p == kink_pair) {  // the row g^ + r^ of the kink pair (see FillResidual)
       cursor.Add(1.0);
       cursor.Add(1.0);
       if (l.has_rho) cursor.Skip();

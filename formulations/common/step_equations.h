@@ -84,6 +84,8 @@ class StepEquationSystem : public EquationSystem {
   int size() const override { return layout_.size(); }
   bool Residual(const Vec& x, Vec* residual) final;
   void Jacobian(const Vec& x, SpMat* jacobian) final;
+  bool ResidualAndJacobian(const Vec& x, Vec* residual, SpMat* jacobian) final;
+  bool shares_residual_and_jacobian() const final { return true; }
   // The block structure of JacobianStructure with v = du, coupling = L (dF1/dr^ = -grad phi^T,
   // dF2/ddu = grad phi / L), y = (dlambda[, rho]); offered when the model has an energy (so
   // dF1/ddu is symmetric).
@@ -130,6 +132,10 @@ class StepEquationSystem : public EquationSystem {
   bool CacheHoldsThisSystem() const;
   // The cache's pattern from the blocks' patterns in curvature_ and gap_jacobian_.
   void BuildPattern();
+  // The pieces of Residual and Jacobian, shared with ResidualAndJacobian.
+  bool FillResidual(const Vec& x, const Unknowns& unknowns, Vec* residual) const;
+  void StartJacobian(SpMat* jacobian);
+  void FillJacobian(const Vec& x, const Unknowns& unknowns, SpMat* jacobian) const;
 
   const StepProblem& step_;
   StepEquationLayout layout_;

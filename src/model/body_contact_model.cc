@@ -107,68 +107,58 @@ void BodyContactModel::EvaluatePair(int p, const Vec& u, Obstacle::Order order,
   obstacles_[pairs_[p].obstacle]->Evaluate(x, order, local);
 }
 
-// phi_p and, with r, the generalised reaction grad phi^T r of (9), one obstacle evaluation per
-// pair.
-void BodyContactModel::AddReaction(const char* what, const Vec& u, const Vec* r, Vec* phi,
-                                   Vec* reaction) const {
+// One pass over the pairs, one obstacle evaluation each, filling the outputs that are not null:
+// phi_p; the generalised reaction grad phi^T r of (9); row p of grad phi, d varphi(X + u_node) /
+// d u = grad varphi on the node's free components (the position depends on u with unit slope
+// there and not at all on supported components); and sum_p r_p hess phi_p(u) with the weights
+// curvature_r: the node's free-dof block of r_p hess varphi for curved obstacles, the curvature
+// term of dF1/ddu in (29). Both matrix patterns were fixed by the constructor; the pairs are
+// visited in that order.
+void BodyContactModel::EvaluatePairs(const char* what, const Vec& u, const PairOutputs& out) const {
   CheckSize(u, num_dofs(), what, "u");
-  if (r != nullptr) CheckSize(*r, num_pairs(), what, "r");
-  if (phi != nullptr) phi->resize(num_pairs());
-  if (reaction != nullptr) reaction->setZero(num_dofs());
-  const Obstacle::Order order =
-      reaction != nullptr ? Obstacle::Order::kGradient : Obstacle::Order::kValue;
-  const int dim = body_->dim();
-  ObstacleLocal local;
-  for (int p = 0; p < num_pairs(); ++p) {
-    EvaluatePair(p, u, order, &local);
-    if (phi != nullptr) (*phi)[p] = local.value;
-    if (reaction == nullptr) continue;
-    const std::array<int, 3>& dofs = pair_dofs_[p];
-    for (int c = 0; c < dim; ++c) {
-      if (dofs[c] >= 0) (*reaction)[dofs[c]] += local.gradient[c] * (*r)[p];
-    }
-  }
-}
-
-// Row p of grad phi: d varphi(X + u_node) / d u = grad varphi on the node's free components
-// (the position depends on u with unit slope there and not at all on supported components).
-// With r, also sum_p r_p hess phi_p(u): the node's free-dof block of r_p hess varphi for curved
-// obstacles, the curvature term of dF1/ddu in (29). Both patterns were fixed by the
-// constructor; the pairs are visited in that order.
-void BodyContactModel::AddDerivatives(const char* what, const Vec& u, const Vec* r, SpMat* jacobian,
-                                      SpMat* curvature) const {
-  CheckSize(u, num_dofs(), what, "u");
-  if (r != nullptr) CheckSize(*r, num_pairs(), what, "r");
+  if (out.r != nullptr) CheckSize(*out.r, num_pairs(), what, "r");
+  if (out.curvature_r != nullptr) CheckSize(*out.curvature_r, num_pairs(), what, "r");
+  if (out.phi != nullptr) out.phi->resize(num_pairs());
+  if (out.reaction != nullptr) out.reaction->setZero(num_dofs());
   const int dim = body_->dim();
   double* jacobian_values = nullptr;
   double* curvature_values = nullptr;
-  if (jacobian != nullptr) {
-    jacobian_pattern_.Reset(jacobian);
-    jacobian_values = jacobian->valuePtr();
+  if (out.jacobian != nullptr) {
+    jacobian_pattern_.Reset(out.jacobian);
+    jacobian_values = out.jacobian->valuePtr();
   }
-  if (curvature != nullptr) {
-    curvature_pattern_.Reset(curvature);
-    curvature_values = curvature->valuePtr();
+  if (out.curvature != nullptr) {
+    curvature_pattern_.Reset(out.curvature);
+    curvature_values = out.curvature->valuePtr();
   }
+  const bool needs_gradient = out.reaction != nullptr || out.jacobian != nullptr;
   const int* jacobian_slots = jacobian_pattern_.slots().data();
   const int* curvature_slots = curvature_pattern_.slots().data();
   std::size_t next_jacobian = 0, next_curvature = 0;
   ObstacleLocal local;
   for (int p = 0; p < num_pairs(); ++p) {
     const bool curved = obstacles_[pairs_[p].obstacle]->is_curved();
-    if (jacobian == nullptr && !curved) continue;
-    EvaluatePair(
-        p, u,
-        curved && curvature != nullptr ? Obstacle::Order::kHessian : Obstacle::Order::kGradient,
-        &local);
+    const bool with_curvature = curved && out.curvature != nullptr;
+    if (out.phi == nullptr && !needs_gradient && !with_curvature) continue;
+    EvaluatePair(p, u,
+                 with_curvature   ? Obstacle::Order::kHessian
+                 : needs_gradient ? Obstacle::Order::kGradient
+                                  : Obstacle::Order::kValue,
+                 &local);
+    if (out.phi != nullptr) (*out.phi)[p] = local.value;
     const std::array<int, 3>& dofs = pair_dofs_[p];
-    if (jacobian != nullptr) {
+    if (out.reaction != nullptr) {
+      for (int c = 0; c < dim; ++c) {
+        if (dofs[c] >= 0) (*out.reaction)[dofs[c]] += local.gradient[c] * (*out.r)[p];
+      }
+    }
+    if (out.jacobian != nullptr) {
       for (int c = 0; c < dim; ++c) {
         if (dofs[c] >= 0) jacobian_values[jacobian_slots[next_jacobian++]] += local.gradient[c];
       }
     }
-    if (curvature == nullptr || !curved) continue;
-    const double rp = (*r)[p];
+    if (!with_curvature) continue;
+    const double rp = (*out.curvature_r)[p];
     for (int b = 0; b < dim; ++b) {
       if (dofs[b] < 0) continue;
       for (int a = 0; a < dim; ++a) {
@@ -180,28 +170,41 @@ void BodyContactModel::AddDerivatives(const char* what, const Vec& u, const Vec*
 }
 
 void BodyContactModel::Gaps(const Vec& u, Vec* phi) const {
-  AddReaction("Gaps", u, nullptr, phi, nullptr);
+  EvaluatePairs("Gaps", u, {.phi = phi});
 }
 
 void BodyContactModel::GeneralisedReaction(const Vec& u, const Vec& r, Vec* reaction) const {
-  AddReaction("GeneralisedReaction", u, &r, nullptr, reaction);
+  EvaluatePairs("GeneralisedReaction", u, {.r = &r, .reaction = reaction});
 }
 
 void BodyContactModel::GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const {
-  AddReaction("GapsAndReaction", u, &r, phi, reaction);
+  EvaluatePairs("GapsAndReaction", u, {.r = &r, .phi = phi, .reaction = reaction});
 }
 
 void BodyContactModel::GapJacobian(const Vec& u, SpMat* jacobian) const {
-  AddDerivatives("GapJacobian", u, nullptr, jacobian, nullptr);
+  EvaluatePairs("GapJacobian", u, {.jacobian = jacobian});
 }
 
 void BodyContactModel::GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const {
-  AddDerivatives("GapCurvature", u, &r, nullptr, curvature);
+  EvaluatePairs("GapCurvature", u, {.curvature_r = &r, .curvature = curvature});
 }
 
 void BodyContactModel::GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian,
                                       SpMat* curvature) const {
-  AddDerivatives("GapDerivatives", u, &r, jacobian, curvature);
+  EvaluatePairs("GapDerivatives", u,
+                {.curvature_r = &r, .jacobian = jacobian, .curvature = curvature});
+}
+
+void BodyContactModel::GapsReactionAndDerivatives(const Vec& u, const Vec& r,
+                                                  const Vec& curvature_r, Vec* phi, Vec* reaction,
+                                                  SpMat* jacobian, SpMat* curvature) const {
+  EvaluatePairs("GapsReactionAndDerivatives", u,
+                {.r = &r,
+                 .curvature_r = &curvature_r,
+                 .phi = phi,
+                 .reaction = reaction,
+                 .jacobian = jacobian,
+                 .curvature = curvature});
 }
 
 }  // namespace cb

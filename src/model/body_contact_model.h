@@ -45,6 +45,12 @@ class BodyContactModel final : public ContactModel {
   void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override;
   void GapsAndReaction(const Vec& u, const Vec& r, Vec* phi, Vec* reaction) const override;
   void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian, SpMat* curvature) const override;
+  void InternalForceAndStiffness(const Vec& u, Vec* force, double scale, const int* slots,
+                                 double* values) const override {
+    body_->InternalForceAndStiffness(u, force, scale, slots, values);
+  }
+  void GapsReactionAndDerivatives(const Vec& u, const Vec& r, const Vec& curvature_r, Vec* phi,
+                                  Vec* reaction, SpMat* jacobian, SpMat* curvature) const override;
   const Vec& load_pattern() const override { return load_; }
 
   const ElasticBody& body() const { return *body_; }
@@ -57,11 +63,18 @@ class BodyContactModel final : public ContactModel {
   std::vector<ContactPair> pairs_;
   // varphi of pair p at its node's current position, up to `order`.
   void EvaluatePair(int p, const Vec& u, Obstacle::Order order, ObstacleLocal* local) const;
-  // The pair loops behind the public functions (a null output is skipped); `what` names the
-  // public function in size errors.
-  void AddReaction(const char* what, const Vec& u, const Vec* r, Vec* phi, Vec* reaction) const;
-  void AddDerivatives(const char* what, const Vec& u, const Vec* r, SpMat* jacobian,
-                      SpMat* curvature) const;
+  // What a pass over the pairs fills (null: skipped) and the reaction weights it reads: r for
+  // the reaction grad phi^T r, curvature_r for sum_p r_p hess phi_p.
+  struct PairOutputs {
+    const Vec* r = nullptr;
+    const Vec* curvature_r = nullptr;
+    Vec* phi = nullptr;
+    Vec* reaction = nullptr;
+    SpMat* jacobian = nullptr;
+    SpMat* curvature = nullptr;
+  };
+  // The pair loop behind the public functions; `what` names the public function in size errors.
+  void EvaluatePairs(const char* what, const Vec& u, const PairOutputs& out) const;
 
   Vec load_;
   std::vector<Point> pair_reference_;          // X of each pair's node

@@ -54,6 +54,15 @@ class ContactModel {
     for (Eigen::Index i = 0; i < k.nonZeros(); ++i) values[slots[i]] += scale * k.valuePtr()[i];
   }
 
+  // grad pi(u) into *force and, as AddStiffness, scale * hess pi(u) into values[slots[k]]: the
+  // elastic part of a residual and of a Jacobian at the same u, each element visited once. Equal
+  // bit for bit to InternalForce followed by AddStiffness (the default).
+  virtual void InternalForceAndStiffness(const Vec& u, Vec* force, double scale, const int* slots,
+                                         double* values) const {
+    InternalForce(u, force);
+    AddStiffness(u, scale, slots, values);
+  }
+
   // phi(u): phi_p = varphi_p(x_p(u)), positive when the node is inside obstacle p (size nc).
   // The gap is g = -phi.
   virtual void Gaps(const Vec& u, Vec* phi) const = 0;
@@ -80,6 +89,17 @@ class ContactModel {
   virtual void GapDerivatives(const Vec& u, const Vec& r, SpMat* jacobian, SpMat* curvature) const {
     GapJacobian(u, jacobian);
     GapCurvature(u, r, curvature);
+  }
+
+  // GapsAndReaction(u, r) and GapDerivatives(u, curvature_r) at the same u in one pass, each
+  // pair's obstacle evaluated once: the contact part of a residual and of a Jacobian together.
+  // The two weights differ when the residual and the Jacobian use the reactions in different
+  // units. Equal bit for bit to the two calls (the default).
+  virtual void GapsReactionAndDerivatives(const Vec& u, const Vec& r, const Vec& curvature_r,
+                                          Vec* phi, Vec* reaction, SpMat* jacobian,
+                                          SpMat* curvature) const {
+    GapsAndReaction(u, r, phi, reaction);
+    GapDerivatives(u, curvature_r, jacobian, curvature);
   }
 
   // f: the external load is lambda f (size d).

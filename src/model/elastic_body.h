@@ -59,6 +59,14 @@ class ElasticBody {
   // The stiffness as a stream of contributions (see ContactModel::StiffnessEntries).
   virtual std::vector<std::pair<int, int>> StiffnessEntries() const = 0;
   virtual void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const = 0;
+  // InternalForce and AddStiffness at the same u in one call, for a Newton iteration that needs
+  // both (see ContactModel::InternalForceAndStiffness). Element-by-element bodies override it to
+  // compute each element's kinematics once; the results equal the two separate calls bit for bit.
+  virtual void InternalForceAndStiffness(const Vec& u, Vec* force, double scale, const int* slots,
+                                         double* values) const {
+    InternalForce(u, force);
+    AddStiffness(u, scale, slots, values);
+  }
 
   // The elements as node lists, for output (2 nodes: a line, 4: a quadrilateral, 8: a
   // hexahedron; VTK cells).

@@ -150,19 +150,21 @@ double Truss::Energy(const Vec& u) const {
 // which solvers treat as a failed evaluation.
 void Truss::InternalForce(const Vec& u, Vec* force) const {
   CheckSize(u, num_dofs(), "InternalForce");
-  const int d = dim();
   force->setZero(num_dofs());
-  for (std::size_t k = 0; k < members_.size(); ++k) {
-    const TrussMember& m = members_[k];
-    const Kinematics kin = MemberKinematics(k, u);
-    const double axial = m.youngs_modulus * m.area * kin.elongation / lengths_[k];
-    const double scale = axial / kin.length;
-    const MemberDofs& md = member_dofs_[k];
-    for (int c = 0; c < d; ++c) {
-      const double f = scale * kin.delta[c];
-      if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f;
-      if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f;
-    }
+  for (std::size_t k = 0; k < members_.size(); ++k)
+    AddMemberForce(k, MemberKinematics(k, u), force);
+}
+
+inline void Truss::AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force) const {
+  const int d = dim();
+  const TrussMember& m = members_[member];
+  const double axial = m.youngs_modulus * m.area * kin.elongation / lengths_[member];
+  const double scale = axial / kin.length;
+  const MemberDofs& md = member_dofs_[member];
+  for (int c = 0; c < d; ++c) {
+    const double f = scale * kin.delta[c];
+    if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f;
+    if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f;
   }
 }
 
@@ -179,18 +181,32 @@ void Truss::AddStiffness(const Vec& u, double scale, const int* slots, double* v
   // The dimension as a compile-time constant: the block loops unroll (the same operations in
   // the same order, so the values are those of a generic loop to the last bit).
   if (dim() == 2) {
-    AddStiffnessOf<2>(u, scale, slots, values);
+    AddStiffnessOf<2>(u, scale, slots, values, nullptr);
   } else {
-    AddStiffnessOf<3>(u, scale, slots, values);
+    AddStiffnessOf<3>(u, scale, slots, values, nullptr);
+  }
+}
+
+// One kinematics per member for both: the force and the block use it as the separate calls do.
+void Truss::InternalForceAndStiffness(const Vec& u, Vec* force, double scale, const int* slots,
+                                      double* values) const {
+  CheckSize(u, num_dofs(), "InternalForceAndStiffness");
+  force->setZero(num_dofs());
+  if (dim() == 2) {
+    AddStiffnessOf<2>(u, scale, slots, values, force);
+  } else {
+    AddStiffnessOf<3>(u, scale, slots, values, force);
   }
 }
 
 template <int D>
-void Truss::AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values) const {
+void Truss::AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values,
+                           Vec* force) const {
   std::size_t next = 0;
   for (std::size_t k = 0; k < members_.size(); ++k) {
     const TrussMember& m = members_[k];
     const Kinematics kin = MemberKinematics(k, u);
+    if (force != nullptr) AddMemberForce(k, kin, force);
     const double inv_length = 1.0 / kin.length;
     const double inv_reference = 1.0 / lengths_[k];
     const double ea = scale * m.youngs_modulus * m.area;  // the block is scaled through E A

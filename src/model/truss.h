@@ -35,6 +35,8 @@ class Truss final : public ElasticBody {
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
   std::vector<std::pair<int, int>> StiffnessEntries() const override { return stiffness_entries_; }
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
+  void InternalForceAndStiffness(const Vec& u, Vec* force, double scale, const int* slots,
+                                 double* values) const override;
 
   std::vector<std::vector<int>> Cells() const override;
   std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
@@ -57,8 +59,12 @@ class Truss final : public ElasticBody {
   };
 
   Kinematics MemberKinematics(std::size_t member, const Vec& u) const;
+  // grad pi_m of one member added into *force.
+  void AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force) const;
+  // The stiffness blocks and, when force is not null, the internal force, member by member.
   template <int D>
-  void AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values) const;
+  void AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values,
+                      Vec* force) const;
 
   Mat coordinates_;
   std::vector<TrussMember> members_;

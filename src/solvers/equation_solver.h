@@ -76,8 +76,9 @@ struct SolverSummary {
   std::string message;
   int iterations = 0;
   int residual_evals = 0;
-  int jacobian_evals = 0;
-  int linear_solves = 0;  // numerical factorisations
+  int jacobian_evals = 0;  // Jacobians used (one evaluated ahead, with a residual, and not
+                           // needed is not counted: EquationSystem::ResidualAndJacobian)
+  int linear_solves = 0;   // numerical factorisations
   double initial_merit = 0.0;
   double final_merit = 0.0;
   double final_residual_inf = 0.0;

@@ -33,6 +33,18 @@ class EquationSystem {
   virtual bool Residual(const Vec& x, Vec* residual) = 0;
   // J(x) = dF/dx. The sparsity pattern is the same on every call.
   virtual void Jacobian(const Vec& x, SpMat* jacobian) = 0;
+  // F(x) and J(x) together, for a solver that will need J wherever it accepts x: systems that
+  // share work between the two override it (and shares_residual_and_jacobian). Returns what
+  // Residual returns; *jacobian is then J(x) only when that is true. Equal bit for bit to the
+  // two calls (the default).
+  virtual bool ResidualAndJacobian(const Vec& x, Vec* residual, SpMat* jacobian) {
+    if (!Residual(x, residual)) return false;
+    Jacobian(x, jacobian);
+    return true;
+  }
+  // True when ResidualAndJacobian costs less than the two calls. Only then does a solver ask for
+  // J ahead of knowing it needs it (a trial point may be rejected or meet the test).
+  virtual bool shares_residual_and_jacobian() const { return false; }
   // The block structure of J (see JacobianStructure), or nullptr when it has none to offer.
   virtual const JacobianStructure* structure() const { return nullptr; }
 };

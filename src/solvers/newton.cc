@@ -27,9 +27,16 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
 
   SolverSummary summary;
   double merit = 0.0;
-  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary)) {
+  // When the system shares work between them, J(x) comes with F(x) from one pass wherever it
+  // will likely be needed: at the start, and at a full step after the previous full step was
+  // accepted (a damped search rarely ends at a = 1, so its first trial is evaluated alone). The
+  // trial's Jacobian overwrites jacobian_, which the iteration no longer needs once the step is
+  // solved for (no second matrix is kept).
+  SpMat* const one_pass = system.shares_residual_and_jacobian() ? &jacobian_ : nullptr;
+  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary, one_pass)) {
     return summary;
   }
+  bool jacobian_at_x = one_pass != nullptr;
 
   // The merits of the last nonmonotone_window iterates, and whether the search has stalled: after
   // kStallIterations iterations in a row whose full step was rejected, the Armijo test is
@@ -40,7 +47,10 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
   bool nonmonotone = false;
   for (int k = 1; k <= options_.max_iterations; ++k) {
     const auto at = [k] { return internal::At(k); };
-    if (!internal::EvaluateJacobian(system, *x, &jacobian_, &summary)) {
+    const bool jacobian_finite = jacobian_at_x
+                                     ? internal::UseJacobian(*x, jacobian_, &summary)
+                                     : internal::EvaluateJacobian(system, *x, &jacobian_, &summary);
+    if (!jacobian_finite) {
       Finish(Status::kFailed, "non-finite Jacobian" + at(), merit, f_, &summary);
       return summary;
     }
@@ -61,7 +71,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     const internal::LineSearchResult search = internal::BacktrackingLineSearch(
         system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit,
         nonmonotone ? *std::max_element(recent.begin(), recent.end()) : merit, dx_, &x_trial_,
-        &f_trial_, &trial_merit, &summary);
+        &f_trial_, &trial_merit, &summary, damped_in_a_row == 0 ? one_pass : nullptr);
     if (!search.accepted) {
       Finish(
           Status::kFailed,
@@ -73,6 +83,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     }
     *x = x_trial_;
     f_.swap(f_trial_);
+    jacobian_at_x = search.jacobian_at_trial;
     merit = trial_merit;
     recent.push_back(merit);
     if (static_cast<int>(recent.size()) > options_.nonmonotone_window) recent.erase(recent.begin());

@@ -14,8 +14,9 @@ namespace cb {
 
 // Newton's method: J(x) dx = -F(x) solved by the sparse direct solver (analysed once, refactorised
 // every iteration), then a backtracking Armijo line search on m. One Jacobian evaluation and one
-// factorisation per iteration. A singular Jacobian ends the solve (kFailed); there is no
-// fallback direction, so that the comparison with the other methods stays clean.
+// factorisation per iteration; the Jacobian at an accepted full step comes from the same pass as
+// its residual (EquationSystem::ResidualAndJacobian). A singular Jacobian ends the solve (kFailed);
+// there is no fallback direction, so that the comparison with the other methods stays clean.
 class NewtonSolver final : public EquationSolver {
  public:
   explicit NewtonSolver(const SolverOptions& options);

@@ -13,28 +13,46 @@ namespace internal {
 
 double InfNorm(const Vec& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
 
-bool EvaluateResidual(EquationSystem& system, const Vec& x, Vec* f, SolverSummary* summary) {
-  ++summary->residual_evals;
-  if (!system.Residual(x, f)) return false;
-  if (f->size() != x.size()) {
+namespace {
+
+// The checks of an evaluated F(x): its size (a wrong one throws) and finiteness.
+bool CheckResidual(const Vec& x, const Vec& f) {
+  if (f.size() != x.size()) {
     throw std::invalid_argument("EquationSystem::Residual returned a vector of size " +
-                                std::to_string(f->size()) + " for a system of size " +
+                                std::to_string(f.size()) + " for a system of size " +
                                 std::to_string(x.size()));
   }
-  return f->allFinite();
+  return f.allFinite();
+}
+
+}  // namespace
+
+bool EvaluateResidual(EquationSystem& system, const Vec& x, Vec* f, SolverSummary* summary) {
+  ++summary->residual_evals;
+  return system.Residual(x, f) && CheckResidual(x, *f);
+}
+
+bool EvaluateResidualAndJacobian(EquationSystem& system, const Vec& x, Vec* f, SpMat* jacobian,
+                                 SolverSummary* summary) {
+  ++summary->residual_evals;
+  return system.ResidualAndJacobian(x, f, jacobian) && CheckResidual(x, *f);
 }
 
 bool EvaluateJacobian(EquationSystem& system, const Vec& x, SpMat* jacobian,
                       SolverSummary* summary) {
-  ++summary->jacobian_evals;
   system.Jacobian(x, jacobian);
-  if (jacobian->rows() != x.size() || jacobian->cols() != x.size()) {
+  return UseJacobian(x, *jacobian, summary);
+}
+
+bool UseJacobian(const Vec& x, const SpMat& jacobian, SolverSummary* summary) {
+  ++summary->jacobian_evals;
+  if (jacobian.rows() != x.size() || jacobian.cols() != x.size()) {
     throw std::invalid_argument("EquationSystem::Jacobian returned a " +
-                                std::to_string(jacobian->rows()) + " x " +
-                                std::to_string(jacobian->cols()) + " matrix for a system of size " +
+                                std::to_string(jacobian.rows()) + " x " +
+                                std::to_string(jacobian.cols()) + " matrix for a system of size " +
                                 std::to_string(x.size()));
   }
-  return AllFinite(jacobian->valuePtr(), static_cast<std::size_t>(jacobian->nonZeros()));
+  return AllFinite(jacobian.valuePtr(), static_cast<std::size_t>(jacobian.nonZeros()));
 }
 
 std::string At(int iteration) { return " at iteration " + std::to_string(iteration); }
@@ -54,7 +72,8 @@ void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::st
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
                                         double reference_merit, const Vec& dx, Vec* x_trial,
-                                        Vec* f_trial, double* merit_trial, SolverSummary* summary) {
+                                        Vec* f_trial, double* merit_trial, SolverSummary* summary,
+                                        SpMat* jacobian_trial) {
   LineSearchResult result;
   const double dx_inf = InfNorm(dx);
   const double too_short = options.step_tol * (1.0 + InfNorm(x));
@@ -67,7 +86,10 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
     }
     result.trials = trial;
     x_trial->noalias() = x + a * dx;
-    const bool evaluated = EvaluateResidual(system, *x_trial, f_trial, summary);
+    const bool with_jacobian = jacobian_trial != nullptr && trial == 1;
+    const bool evaluated = with_jacobian ? EvaluateResidualAndJacobian(system, *x_trial, f_trial,
+                                                                       jacobian_trial, summary)
+                                         : EvaluateResidual(system, *x_trial, f_trial, summary);
     if (evaluated) {
       const double m = 0.5 * f_trial->squaredNorm();
       const double bound = test == DecreaseTest::kArmijoNewtonSlope
@@ -76,6 +98,7 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
       if (m <= bound) {
         result.accepted = true;
         result.step = a;
+        result.jacobian_at_trial = with_jacobian;
         *merit_trial = m;
         return result;
       }
@@ -100,8 +123,11 @@ void Finish(Status status, std::string message, double merit, const Vec& f,
 }
 
 bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
-                SolverSummary* summary) {
-  if (!EvaluateResidual(system, x, f, summary)) {
+                SolverSummary* summary, SpMat* jacobian) {
+  const bool evaluated = jacobian != nullptr
+                             ? EvaluateResidualAndJacobian(system, x, f, jacobian, summary)
+                             : EvaluateResidual(system, x, f, summary);
+  if (!evaluated) {
     summary->status = Status::kFailed;
     summary->message = "residual cannot be evaluated (or is not finite) at the initial point";
     return true;

@@ -21,10 +21,19 @@ double InfNorm(const Vec& v);
 // unusable. Throws std::invalid_argument when the system returns a vector of the wrong size.
 bool EvaluateResidual(EquationSystem& system, const Vec& x, Vec* f, SolverSummary* summary);
 
+// EvaluateResidual through EquationSystem::ResidualAndJacobian: *jacobian is J(x) as well when
+// it returns true. The Jacobian is counted only when a solver uses it (UseJacobian), so that a
+// Jacobian evaluated ahead and not needed (the point was rejected, or met the test) does not
+// count.
+bool EvaluateResidualAndJacobian(EquationSystem& system, const Vec& x, Vec* f, SpMat* jacobian,
+                                 SolverSummary* summary);
+
 // Evaluates J(x) into *jacobian and counts it. Returns false when J has a non-finite entry;
 // throws std::invalid_argument when the system returns a matrix that is not n x n.
 bool EvaluateJacobian(EquationSystem& system, const Vec& x, SpMat* jacobian,
                       SolverSummary* summary);
+// The checks and the count of EvaluateJacobian, for a Jacobian already evaluated at x.
+bool UseJacobian(const Vec& x, const SpMat& jacobian, SolverSummary* summary);
 
 // " at iteration k", for messages (built only when a solve ends).
 std::string At(int iteration);
@@ -52,7 +61,8 @@ struct LineSearchResult {
   bool accepted = false;
   double step = 0.0;  // the accepted factor a
   int trials = 0;
-  bool too_short = false;  // gave up because a dx no longer changes x (stagnation)
+  bool too_short = false;          // gave up because a dx no longer changes x (stagnation)
+  bool jacobian_at_trial = false;  // *jacobian_trial holds J at the accepted point
 };
 
 // Backtracking from a = 1 along dx, with the Armijo test measured from reference_merit >= merit
@@ -62,20 +72,24 @@ struct LineSearchResult {
 // interpolate. Otherwise the next factor minimises the quadratic through m(0), the Newton slope
 // -2 m(0) and m(a), clipped to [backtrack_min, backtrack_max] * a, so a wrong slope (a
 // quasi-Newton direction) cannot make the search stall or jump. On acceptance *x_trial,
-// *f_trial, *merit_trial hold the accepted point.
+// *f_trial, *merit_trial hold the accepted point. With jacobian_trial, the full step a = 1 is
+// evaluated with its Jacobian in one pass (EvaluateResidualAndJacobian), for Newton's next
+// iteration if that step is accepted (result.jacobian_at_trial).
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
                                         double reference_merit, const Vec& dx, Vec* x_trial,
-                                        Vec* f_trial, double* merit_trial, SolverSummary* summary);
+                                        Vec* f_trial, double* merit_trial, SolverSummary* summary,
+                                        SpMat* jacobian_trial = nullptr);
 
 // Fills the summary's final fields and status.
 void Finish(Status status, std::string message, double merit, const Vec& f, SolverSummary* summary);
 
 // The start of every solve: evaluates F at the initial point into *f and *merit, and records the
 // initial merit. Returns true when the solve is already over: F cannot be evaluated there
-// (kFailed) or it meets residual_tol (kConverged).
+// (kFailed) or it meets residual_tol (kConverged). With jacobian, J(x) is evaluated in the same
+// pass (EvaluateResidualAndJacobian).
 bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
-                SolverSummary* summary);
+                SolverSummary* summary, SpMat* jacobian = nullptr);
 
 // The end of every accepted iteration k: records it, reports it to the callback, and returns
 // true when the solve is over, because ||F||_inf <= residual_tol (kConverged, which wins over a
