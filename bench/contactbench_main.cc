@@ -2,10 +2,15 @@
 #include <csignal>
 
 #include "formulations/petsc/petsc.h"
+#include "formulations/petsc_dist/parallel_libraries.h"
 #include "harness/cli.h"
 #include "harness/interrupt.h"
+#include "harness/relaunch.h"
 
 int main(int argc, char** argv) {
+  // Under mpirun, before MPI starts: the parallel MPI and MUMPS in front of the sequential
+  // stand-ins Ipopt and Siconos link (parallel_libraries.h); nothing to do otherwise.
+  cb::harness::RelaunchWithLibrariesFirst(cb::ParallelLibrariesPreload(), argv);
   // Before anything else, so that a signal at any time stops the run the same way.
   cb::harness::InstallInterruptHandlers();
   // A file size limit (ulimit -f) then fails the write that exceeds it, which the records

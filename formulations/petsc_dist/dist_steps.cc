@@ -1,6 +1,5 @@
 #include "formulations/petsc_dist/dist_steps.h"
 
-#include <dlfcn.h>
 #include <petscsnes.h>
 
 #include <algorithm>
@@ -13,6 +12,7 @@
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
 #include "formulations/petsc_dist/element_partition.h"
+#include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
 
@@ -53,30 +53,17 @@ bool AnyProcess(bool mine) {
   return any != 0;
 }
 
-// The file of the shared library that defines `symbol` for this process ("" if none).
-std::string DefiningLibrary(const char* symbol) {
-  void* address = dlsym(RTLD_DEFAULT, symbol);
-  Dl_info info;
-  if (address == nullptr || dladdr(address, &info) == 0 || info.dli_fname == nullptr) return "";
-  return info.dli_fname;
-}
-
-// Several processes need MPI's own functions and the parallel MUMPS; a sequential MUMPS loaded
-// by another backend (Debian's libdmumps_seq, which Ipopt and Siconos link) exports stand-ins
-// of both (MPI_Comm_rank always 0), and whichever the executable loads first serves PETSc too.
+// Several processes need MPI's own functions and the parallel MUMPS (parallel_libraries.h);
+// the driver relaunches itself with them first, so a stand-in left serving is refused.
 void RequireParallelLibraries() {
-  const std::string mpi = DefiningLibrary("MPI_Comm_rank");
-  const std::string mumps = DefiningLibrary("dmumps_c");
-  for (const std::string& library : {mpi, mumps}) {
-    if (library.find("_seq") == std::string::npos && library.find("mpiseq") == std::string::npos) {
-      continue;
-    }
-    throw std::invalid_argument(
-        "a run of several processes needs MPI and MUMPS, which this build's sequential MUMPS (" +
-        library +
-        ", linked by the Ipopt or Siconos backend) stands in for; configure a build with "
-        "-DCONTACTBENCH_WITH_IPOPT=OFF -DCONTACTBENCH_WITH_SICONOS=OFF (docs/scale-out.md)");
-  }
+  const std::string library = SequentialStandIn();
+  if (library.empty()) return;
+  throw std::invalid_argument(
+      "a run of several processes needs MPI and MUMPS, which this build's sequential MUMPS (" +
+      library +
+      ", linked by the Ipopt or Siconos backend) stands in for, and loading the parallel ones "
+      "first (LD_PRELOAD) did not help; configure a build with -DCONTACTBENCH_WITH_IPOPT=OFF "
+      "-DCONTACTBENCH_WITH_SICONOS=OFF (docs/scale-out.md)");
 }
 
 }  // namespace

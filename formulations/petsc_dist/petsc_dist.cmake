@@ -6,11 +6,12 @@ target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/eleme
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
-    ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc)
+    ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc
+    ${CMAKE_CURRENT_LIST_DIR}/parallel_libraries.cc)
 else()
   target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_dist_stub.cc)
 endif()
 if(CONTACTBENCH_HAVE_PETSC)
-  # dlsym / dladdr: which library serves MPI and MUMPS (dist_steps.cc).
+  # dlsym / dladdr / dl_iterate_phdr: which library serves MPI and MUMPS (parallel_libraries.cc).
   target_link_libraries(contactbench_formulations PRIVATE ${CMAKE_DL_LIBS})
 endif()

@@ -1,6 +1,7 @@
 // The distributed backend without PETSc: unavailable, one process.
 #include <stdexcept>
 
+#include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 
 namespace cb {
@@ -16,6 +17,8 @@ namespace {
 bool DistAvailable() { return false; }
 int DistributedRank() { return 0; }
 int DistributedSize() { return 1; }
+std::string SequentialStandIn() { return ""; }
+std::string ParallelLibrariesPreload() { return ""; }
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig&) { Unavailable(); }
 std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig&) { Unavailable(); }
 std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig&) { Unavailable(); }

@@ -1,0 +1,71 @@
+#include "formulations/petsc_dist/parallel_libraries.h"
+
+#include <dlfcn.h>
+#include <link.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace cb {
+
+namespace {
+
+// The file of the shared library that defines `symbol` for this process ("" if none).
+std::string DefiningLibrary(const char* symbol) {
+  void* address = dlsym(RTLD_DEFAULT, symbol);
+  Dl_info info;
+  if (address == nullptr || dladdr(address, &info) == 0 || info.dli_fname == nullptr) return "";
+  return info.dli_fname;
+}
+
+bool IsSequential(const std::string& library) {
+  return library.find("_seq") != std::string::npos || library.find("mpiseq") != std::string::npos;
+}
+
+// More than one process by the launcher's word, before MPI is initialised.
+bool SeveralProcessesLaunched() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const char* value = std::getenv(name);
+    if (value != nullptr && std::atoi(value) > 1) return true;
+  }
+  return false;
+}
+
+// The loaded libraries whose file name starts with one of the parallel libraries' names (and
+// is not a sequential one): Open MPI's C and Fortran bindings and the parallel MUMPS.
+std::vector<std::string> LoadedParallelLibraries() {
+  std::vector<std::string> found;
+  auto visit = [](dl_phdr_info* info, std::size_t, void* data) {
+    const std::string path = info->dlpi_name != nullptr ? info->dlpi_name : "";
+    const std::string file = path.substr(path.find_last_of('/') + 1);
+    for (const char* prefix : {"libmpi_mpifh.so", "libmpi.so", "libmumps_common-", "libdmumps-"}) {
+      if (file.rfind(prefix, 0) == 0 && !IsSequential(file)) {
+        static_cast<std::vector<std::string>*>(data)->push_back(path);
+      }
+    }
+    return 0;
+  };
+  dl_iterate_phdr(visit, &found);
+  return found;
+}
+
+}  // namespace
+
+std::string SequentialStandIn() {
+  for (const char* symbol : {"MPI_Comm_rank", "mpi_comm_rank_", "dmumps_c"}) {
+    const std::string library = DefiningLibrary(symbol);
+    if (IsSequential(library)) return library;
+  }
+  return "";
+}
+
+std::string ParallelLibrariesPreload() {
+  if (!SeveralProcessesLaunched() || SequentialStandIn().empty()) return "";
+  std::string list;
+  for (const std::string& path : LoadedParallelLibraries())
+    list += (list.empty() ? "" : ":") + path;
+  return list;
+}
+
+}  // namespace cb
