@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/blas_info.h"
+#include "formulations/registry.h"
 #include "step/formulation.h"
 #include "verdict/verdict.h"
 
@@ -19,6 +20,13 @@ namespace cb::bench {
 
 // The CPU model from /proc/cpuinfo: Google Benchmark's own context has the number of CPUs and
 // their clock, not the model, which the comparison report states.
+// Whether the serial benchmarks time this formulation: built, and not one of the distributed
+// dist-* ones, which on one process are their serial counterparts' methods through PETSc's SNES
+// and have their own scale benchmark (docs/scale-out.md).
+inline bool InSerialBenchmarks(const FormulationInfo& info) {
+  return info.available && info.name.rfind("dist-", 0) != 0;
+}
+
 inline std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;

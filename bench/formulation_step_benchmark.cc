@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
                  clock.Seconds());
     benchmark::AddCustomContext(problem + "_steps", where);
     for (const auto& info : FormulationRegistry()) {
-      if (!info.available) continue;
+      if (!bench::InSerialBenchmarks(info)) continue;
       for (const StartKind start : {StartKind::kWarm, StartKind::kCold}) {
         for (const auto& [label, k] : steps) {
           const std::string name = "FormulationStep/" + problem + "/" + info.name + "/" +

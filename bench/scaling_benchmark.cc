@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
   bench::AddMachineContext();
   benchmark::AddCustomContext("verdict_tolerance", "1e-08");
   for (const auto& info : FormulationRegistry()) {
-    if (!info.available) continue;
+    if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {25, 50, 100, 200, 400}) {
       auto* b = benchmark::RegisterBenchmark(("BlockColdSolve/" + info.name).c_str(), ColdSolve,
                                              std::string("block"), info.name);
@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
     }
   }
   for (const auto& info : FormulationRegistry()) {
-    if (!info.available) continue;
+    if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {16, 24, 40}) {
       auto* b = benchmark::RegisterBenchmark(("HertzColdSolve/" + info.name).c_str(), ColdSolve,
                                              std::string("hertz-3d"), info.name);

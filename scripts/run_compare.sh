@@ -41,7 +41,7 @@
 # Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),
-# ROBUST_ARC_CURVED (50), SKIP_SETUP=1 to use an existing build without running setup.sh.
+# ROBUST_ARC_CURVED (50), ROBUST_PROBLEMS (arch-flat arch-curved), SKIP_SETUP=1 to use an existing build without running setup.sh.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
@@ -57,8 +57,10 @@ if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit
 cb="$build/bin/contactbench"
 
 # The formulations this build has (`contactbench list` marks the others "(not built)").
+# The distributed dist-* formulations are left out: on one process they are the methods of their
+# serial counterparts through PETSc's SNES (docs/scale-out.md), and compare runs one process.
 mapfile -t available < <("$cb" list | awk '/^formulations:/ {f = 1; next} /^[a-z]/ {f = 0}
-  f && NF && $0 !~ /\(not built\)/ {print $1}')
+  f && NF && $0 !~ /\(not built\)/ && $1 !~ /^dist-/ {print $1}')
 join() { local IFS=,; echo "$*"; }
 all="$(join "${available[@]}")"
 # The full paths without the two NLopt formulations that take seconds per step (see above).
@@ -89,7 +91,7 @@ for set in "${sets[@]}"; do
     block)
       compare "$out/block" --problem block --formulations "$all" --starts cold ;;
     robustness)
-      for problem in arch-flat arch-curved; do
+      for problem in ${ROBUST_PROBLEMS:-arch-flat arch-curved}; do
         for theta in "${robust_thetas[@]}"; do
           steps=$(awk -v a="${robust_arc[$problem]}" -v t="$theta" 'BEGIN {printf "%d", a / t + 0.5}')
           compare "$robust_out/$problem/theta-$theta" --problem "$problem" \
