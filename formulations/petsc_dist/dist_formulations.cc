@@ -36,7 +36,7 @@ bool IsVi(DistKind kind) { return kind == DistKind::kRsls || kind == DistKind::k
 // the direct solve's Newton iterations.
 std::string LinearOptions(const std::string& linear) {
   if (linear == "amg") {
-    return " -ksp_type fgmres -ksp_gmres_restart 200 -ksp_rtol 1e-8 -ksp_max_it 1000"
+    return " -ksp_type fgmres -ksp_gmres_restart 100 -ksp_rtol 1e-8 -ksp_max_it 1000"
            " -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper"
            " -pc_fieldsplit_schur_precondition selfp -fieldsplit_0_ksp_type preonly"
            " -fieldsplit_0_pc_type gamg -fieldsplit_0_mg_coarse_sub_pc_type svd"
