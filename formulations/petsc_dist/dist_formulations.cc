@@ -28,26 +28,44 @@ enum class DistKind { kImplicitFb, kNonsmoothFb, kActiveSet, kRsls, kSsls };
 
 bool IsVi(DistKind kind) { return kind == DistKind::kRsls || kind == DistKind::kSsls; }
 
+// The linear solves `linear=` names. direct: MUMPS on the whole system. amg: FGMRES with a
+// Schur-complement field split (field_split.h): GAMG on the du block, whose rigid modes are free
+// where contact alone holds the body (so the coarsest level is solved by SVD, a pseudo-inverse),
+// and MUMPS on the small selfp Schur complement of the contact rows. Its relative tolerance only
+// paces Newton (the stopping test ||F||_inf <= residual_tol is on the true residual); 1e-8 keeps
+// the direct solve's Newton iterations.
+std::string LinearOptions(const std::string& linear) {
+  if (linear == "amg") {
+    return " -ksp_type fgmres -ksp_gmres_restart 100 -ksp_rtol 1e-8 -ksp_max_it 1000"
+           " -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper"
+           " -pc_fieldsplit_schur_precondition selfp -fieldsplit_0_ksp_type preonly"
+           " -fieldsplit_0_pc_type gamg -fieldsplit_0_mg_coarse_sub_pc_type svd"
+           " -fieldsplit_0_mg_coarse_sub_pc_svd_zero_sing 1e-8"
+           " -fieldsplit_1_ksp_type preonly -fieldsplit_1_pc_type lu"
+           " -fieldsplit_1_pc_factor_mat_solver_type mumps";
+  }
+  return " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
+}
+
 // The defaults of dist_steps.h for a kind.
-std::string DefaultOptions(DistKind kind, const SolverOptions& solver) {
-  const std::string direct = " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
+std::string DefaultOptions(DistKind kind, const SolverOptions& solver, const std::string& linear) {
   if (IsVi(kind)) {
     return std::string("-snes_type ") +
-           (kind == DistKind::kRsls ? "vinewtonrsls" : "vinewtonssls") + direct +
+           (kind == DistKind::kRsls ? "vinewtonrsls" : "vinewtonssls") + LinearOptions(linear) +
            " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
   }
-  return "-snes_type newtonls -snes_linesearch_type bt" + direct + " -snes_max_it " +
+  return "-snes_type newtonls -snes_linesearch_type bt" + LinearOptions(linear) + " -snes_max_it " +
          std::to_string(solver.max_iterations);
 }
 
 class DistFormulation final : public Formulation {
  public:
   DistFormulation(std::string name, DistKind kind, const ImplicitFbOptions& options,
-                  const std::string& user_options)
+                  const std::string& linear, const std::string& user_options)
       : name_(std::move(name)),
         kind_(kind),
         options_(options),
-        steps_(DefaultOptions(kind, options.solver_options), user_options),
+        steps_(DefaultOptions(kind, options.solver_options, linear), user_options),
         cache_(StepEquationSystem::MakePatternCache()) {}
 
   std::string name() const override { return name_; }
@@ -134,11 +152,14 @@ class DistFormulation final : public Formulation {
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };
 
-// `petsc_options` (free text), then the serial counterpart's typed options.
+// `petsc_options` (free text), `linear` (the equations only: SNESVI solves on reduced rows,
+// which the field split does not know), then the serial counterpart's typed options.
 std::unique_ptr<Formulation> MakeDist(const std::string& name, DistKind kind,
                                       const FormulationConfig& config) {
   OptionReader reader(name, config.options);
   const std::string user_options = reader.GetText("petsc_options", "");
+  const std::string linear =
+      IsVi(kind) ? "direct" : reader.GetChoice("linear", "direct", {"direct", "amg"});
   ImplicitFbOptions options;
   options.eta = static_cast<EtaCase>(config.eta);
   options.solver_options = config.solver_options;
@@ -149,7 +170,7 @@ std::unique_ptr<Formulation> MakeDist(const std::string& name, DistKind kind,
   reader.Finish();
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(name + " options: " + why);
-  return std::make_unique<DistFormulation>(name, kind, options, user_options);
+  return std::make_unique<DistFormulation>(name, kind, options, linear, user_options);
 }
 
 }  // namespace

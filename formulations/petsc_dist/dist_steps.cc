@@ -12,6 +12,7 @@
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
 #include "formulations/petsc_dist/element_partition.h"
+#include "formulations/petsc_dist/field_split.h"
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
@@ -158,6 +159,20 @@ struct DistributedSteps::Objects {
     own_dofs.assign(touched.begin(), touched.end());
     model = s.model;
     size = n;
+    if (!vi) SplitWhereAsked(body);
+  }
+
+  // A field-split preconditioner (chosen by the options) gets the du rows and the rest (SNESReset
+  // above has cleared the splits of an earlier model). SNESVI solves on reduced rows: not there.
+  void SplitWhereAsked(const ElasticBody& body) const {
+    KSP ksp = nullptr;
+    PC pc = nullptr;
+    PetscBool split = PETSC_FALSE;
+    Try(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+    Try(KSPGetPC(ksp, &pc), "KSPGetPC");
+    Try(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split),
+        "PetscObjectTypeCompare");
+    if (split) Try(SetDisplacementSplit(pc, body, first, last), "PCFieldSplitSetIS");
   }
 
   // The iterate of `v` on every process, into `full`.
@@ -438,6 +453,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   QuietPetscErrors quiet;
   Objects& o = *objects_;
   const int n = equations.layout.size();
+  o.vi = bounds != nullptr;
   if (o.model != step.model || o.size != n) o.Make(step, n);
   o.step = &step;
   o.equations = &equations;
@@ -445,7 +461,6 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.result = result;
   o.clock = Stopwatch();
   o.residual_tol = residual_tol;
-  o.vi = bounds != nullptr;
   o.stopped = o.timed_out = false;
   o.jacobian_evals = 0;
   o.error = nullptr;

@@ -23,6 +23,8 @@
 //   SNESVI     -snes_type vinewtonrsls | vinewtonssls, the same direct solve, -snes_atol 1e-10
 //              -snes_rtol 0 -snes_max_it 200 (the defaults of petsc_adapter.h, with MUMPS,
 //              the parallel factorisation Debian's PETSc has).
+// The formulation's `linear=amg` replaces the direct solve by a field split; whenever the options
+// choose PCFIELDSPLIT for the equations, the du rows and the rest are its splits (field_split.h).
 // The stopping test of the equations is the serial solvers' ||F||_inf <= residual_tol; that of
 // SNESVI its own norm below -snes_atol. Every decision (the stopping test, an interrupt, the
 // time limit, a failed evaluation) is taken on values reduced over all processes, so that the

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Two processes against one (docs/scale-out.md): P1 (block, n = 8) and the first steps of P2
 # (arch-flat) and P3 (arch-curved) run serially with implicit-fb and with mpirun -n 2 with the
-# distributed formulations; the answers must agree (scripts/compare_answers.py).
+# distributed formulations; the answers must agree (scripts/compare_answers.py). dist_options
+# are the distributed run's own (the iterative linear solve, linear=amg).
 # Usage: two_processes.sh CONTACTBENCH MPIEXEC SOURCE_DIR WORK_DIR
 set -u
 bin=$1 mpiexec=$2 source=$3 work=$4
@@ -15,15 +16,18 @@ check() {
   "$bin" run --problem "$problem" --formulation implicit-fb --out "$work/$label-serial" "$@" \
     2>"$work/$label-serial.log" || { cat "$work/$label-serial.log"; exit 1; }
   "$mpiexec" -n 2 "$bin" run --problem "$problem" --formulation "$formulation" \
-    --out "$work/$label-dist" "$@" >"$work/$label-dist.log" 2>&1
+    --out "$work/$label-dist" "$@" $dist_options >"$work/$label-dist.log" 2>&1
   status=$?
   if [ $status -ne 0 ]; then cat "$work/$label-dist.log"; exit 1; fi
   echo "$label: $formulation on 2 processes against implicit-fb"
   python3 "$source/scripts/compare_answers.py" "$work/$label-serial" "$work/$label-dist" || exit 1
 }
 
+dist_options=""
 check p1 block dist-implicit-fb --set n=8
 check p1-rsls block dist-petsc-rsls --set n=8
 check p2 arch-flat dist-implicit-fb --steps 6
 check p3 arch-curved dist-active-set --steps 6
+dist_options="--option linear=amg"
+check p1-amg block dist-active-set --set n=16
 exit 0

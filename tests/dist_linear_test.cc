@@ -1,0 +1,60 @@
+// The distributed formulations' iterative linear solve (`linear=amg`: FGMRES with a
+// Schur-complement field split, GAMG on the du block; dist_formulations.cc) in one process, on P1
+// at n = 10 from the cold start: the answer must pass the verdict at 1e-8, carry the load on the
+// wall and the floor (the fixture's check) and equal the direct solve's (MUMPS); two processes
+// are checked by tests/mpi/two_processes.sh.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "fixtures.h"
+#include "formulations/petsc_dist/petsc_dist.h"
+#include "verdict/verdict.h"
+
+namespace cb {
+namespace {
+
+using fixtures::FindFixture;
+using fixtures::Fixture;
+
+FormulationConfig WithLinear(const std::string& linear) {
+  FormulationConfig config;
+  config.options["linear"] = linear;
+  return config;
+}
+
+StartPoint ColdStart(const Fixture& f) {
+  StartPoint start;
+  start.kind = StartKind::kCold;
+  start.du = Vec::Zero(f.problem.model->num_dofs());
+  start.dlambda = f.constraint.target - f.base.lambda;
+  start.r = f.base.r;
+  return start;
+}
+
+TEST(DistLinearSolveTest, AmgGivesTheDirectSolvesAnswerOnP1) {
+  if (!DistAvailable()) GTEST_SKIP() << "built without PETSc";
+  const Fixture& f = FindFixture("block_n10");
+  const StepProblem step = f.Step();
+  const StepResult amg = MakeDistActiveSet(WithLinear("amg"))->Solve(step, ColdStart(f));
+  const StepResult direct = MakeDistActiveSet(WithLinear("direct"))->Solve(step, ColdStart(f));
+  ASSERT_EQ(amg.status, Status::kConverged) << amg.message;
+  EXPECT_TRUE(Judge(step, amg.point, 1e-8).verified);
+  EXPECT_TRUE(f.CheckSolution(
+      State{f.base.u + amg.point.du, amg.point.r, f.base.lambda + amg.point.dlambda}));
+  EXPECT_TRUE(fixtures::RelativelyClose(amg.point.du, direct.point.du, 1e-6,
+                                        f.problem.scales.length, "du"));
+  // Krylov iterations, not one factorisation per Newton iteration; the tolerance of the preset
+  // keeps Newton's count within one of the direct solve's.
+  EXPECT_GT(amg.counts.linear_solves, 2 * amg.counts.iterations);
+  EXPECT_LE(amg.counts.iterations, direct.counts.iterations + 1);
+}
+
+TEST(DistLinearSolveTest, SnesViRefusesTheLinearChoice) {
+  if (!DistAvailable()) GTEST_SKIP() << "built without PETSc";
+  EXPECT_THROW(MakeDistPetscRsls(WithLinear("amg")), std::invalid_argument);
+  EXPECT_THROW(MakeDistActiveSet(WithLinear("ilu")), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cb
