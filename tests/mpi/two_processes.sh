@@ -1,8 +1,9 @@
 #!/bin/sh
-# Two processes against one (docs/scale-out.md): P1 (block, n = 8) and the first steps of P2
-# (arch-flat) and P3 (arch-curved) run serially with implicit-fb and with mpirun -n 2 with the
-# distributed formulations; the answers must agree (scripts/compare_answers.py). dist_options
-# are the distributed run's own (the iterative linear solve, linear=amg).
+# Two processes against one (docs/scale-out.md): P1 (block, n = 8), the first steps of P2
+# (arch-flat) and P3 (arch-curved), and hertz-3d on a 6^3 mesh run serially with implicit-fb and
+# with mpirun -n 2 with the distributed formulations; the answers must agree
+# (scripts/compare_answers.py). dist_options are the distributed run's own (the iterative linear
+# solve, linear=amg).
 # Usage: two_processes.sh CONTACTBENCH MPIEXEC SOURCE_DIR WORK_DIR
 set -u
 bin=$1 mpiexec=$2 source=$3 work=$4
@@ -28,6 +29,7 @@ check p1 block dist-implicit-fb --set n=8
 check p1-rsls block dist-petsc-rsls --set n=8
 check p2 arch-flat dist-implicit-fb --steps 6
 check p3 arch-curved dist-active-set --steps 6
+check p4 hertz-3d dist-implicit-fb --set n=6 --set nz=6
 dist_options="--option linear=amg"
 check p1-amg block dist-active-set --set n=16
 exit 0
