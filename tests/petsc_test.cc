@@ -133,6 +133,19 @@ TEST_P(PetscTest, SolvesTheBarAgainstTheWallToItsClosedForm) {
   EXPECT_EQ(r.details.at("petsc_reason"), "2 CONVERGED_FNORM_ABS");
 }
 
+TEST_P(PetscTest, SolvesAfterMoreInstancesThanPetscsOptionsDatabaseHolds) {
+  // A benchmark makes a formulation per repetition; each used to add its options under a new
+  // prefix until PETSc's database (512 entries in 3.18) refused the next one.
+  const fixtures::Fixture& f = fixtures::FindFixture("bar_wall");
+  const StepProblem step = f.Step();
+  for (int instance = 0; instance < 600; ++instance) {
+    auto formulation = Make(GetParam());
+    if (instance % 100 != 99) continue;
+    const StepResult r = formulation->Solve(step, Cold(step));
+    ASSERT_EQ(r.status, Status::kConverged) << "instance " << instance << ": " << r.message;
+  }
+}
+
 TEST_P(PetscTest, RecordsItsDefaultsAndAppliesTheUsersOptionsOverThem) {
   auto plain = Make(GetParam());
   const std::string type = GetParam() == "petsc-rsls" ? "vinewtonrsls" : "vinewtonssls";

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "core/timer.h"
@@ -114,6 +116,15 @@ std::string SnesReasonName(SNESConvergedReason reason) {
   return reason >= SNES_DIVERGED_TR_DELTA && reason <= SNES_CONVERGED_ITS
              ? SNESConvergedReasons[reason]
              : "reason " + std::to_string(static_cast<int>(reason));
+}
+
+std::string OptionsPrefixFor(const std::string& family, const std::string& options) {
+  static std::mutex mutex;
+  static std::map<std::string, int> prefixes;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto [it, added] =
+      prefixes.emplace(family + '\n' + options, static_cast<int>(prefixes.size()) + 1);
+  return family + std::to_string(it->second) + "_";
 }
 
 void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options,
@@ -336,8 +347,7 @@ SnesVi::SnesVi(const std::string& snes_type, const std::string& user_options)
     : options_(PetscViOptions(snes_type, user_options)), objects_(std::make_unique<Objects>()) {
   StartPetsc();
   PetscErrorCapture capture;
-  static int instances = 0;
-  const std::string prefix = "cb" + std::to_string(++instances) + "_";
+  const std::string prefix = OptionsPrefixFor("cb", options_);
   Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
   const PetscErrorCode inserted = PetscOptionsInsertString(nullptr, options_.c_str());
   Try(PetscOptionsPrefixPop(nullptr), "PetscOptionsPrefixPop");

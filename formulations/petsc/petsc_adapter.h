@@ -62,6 +62,12 @@ namespace cb {
 // Starts PETSc unless the process already has (see the top of the file); once per process.
 void StartPetsc();
 
+// The options prefix ("<family><k>_") under which the options text `options` goes into PETSc's
+// options database: the same for the same text, so that instances made again and again (a
+// benchmark's repetitions, a path's formulations) overwrite their entries instead of adding
+// new ones to a database of fixed size (PETSc 3.18 holds 512 entries, then refuses).
+std::string OptionsPrefixFor(const std::string& family, const std::string& options);
+
 // The status of a SNESConvergedReason; its PETSc name ("CONVERGED_FNORM_ABS").
 Status MapSnesReason(SNESConvergedReason reason);
 std::string SnesReasonName(SNESConvergedReason reason);

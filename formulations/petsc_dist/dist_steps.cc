@@ -392,11 +392,6 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
   throw std::runtime_error("the step system's evaluation failed on another process");
 }
 
-std::string Prefix() {
-  static int instances = 0;
-  return "cbd" + std::to_string(++instances) + "_";
-}
-
 }  // namespace
 
 // --- the instance ------------------------------------------------------------------------------
@@ -407,7 +402,7 @@ DistributedSteps::DistributedSteps(const std::string& defaults, const std::strin
   StartPetsc();
   if (DistributedSize() > 1) RequireParallelLibraries();
   QuietPetscErrors quiet;
-  const std::string prefix = Prefix();
+  const std::string prefix = OptionsPrefixFor("cbd", options_);
   Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
   const PetscErrorCode inserted = PetscOptionsInsertString(nullptr, options_.c_str());
   Try(PetscOptionsPrefixPop(nullptr), "PetscOptionsPrefixPop");
