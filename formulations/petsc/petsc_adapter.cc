@@ -28,12 +28,6 @@ void FinalizePetsc() {
   if (started_here && initialized && !finalized) PetscFinalize();
 }
 
-bool PetscGone() {
-  PetscBool finalized = PETSC_FALSE;
-  PetscFinalized(&finalized);
-  return finalized;
-}
-
 // The message of the error being raised (its first report), instead of PETSc's printout.
 std::string last_error;
 
@@ -51,17 +45,20 @@ PetscErrorCode RecordPetscError(MPI_Comm, int, const char* function, const char*
   return code;
 }
 
-// PETSc's errors recorded, not printed, while it lives.
-class PetscErrorCapture {
- public:
-  PetscErrorCapture() {
-    last_error.clear();
-    PetscPushErrorHandler(RecordPetscError, nullptr);
-  }
-  ~PetscErrorCapture() { PetscPopErrorHandler(); }
-  PetscErrorCapture(const PetscErrorCapture&) = delete;
-  PetscErrorCapture& operator=(const PetscErrorCapture&) = delete;
-};
+}  // namespace
+
+bool PetscGone() {
+  PetscBool finalized = PETSC_FALSE;
+  PetscFinalized(&finalized);
+  return finalized;
+}
+
+PetscErrorCapture::PetscErrorCapture() {
+  last_error.clear();
+  PetscPushErrorHandler(RecordPetscError, nullptr);
+}
+
+PetscErrorCapture::~PetscErrorCapture() { PetscPopErrorHandler(); }
 
 std::string PetscErrorText(PetscErrorCode code, const char* call) {
   std::string text = std::string("PETSc ") + call + " failed (error " + std::to_string(code) + ")";
@@ -71,8 +68,6 @@ std::string PetscErrorText(PetscErrorCode code, const char* call) {
 void Try(PetscErrorCode code, const char* call) {
   if (code != 0) throw std::runtime_error(PetscErrorText(code, call));
 }
-
-}  // namespace
 
 void StartPetsc() {
   PetscBool initialized = PETSC_FALSE;

@@ -59,6 +59,25 @@
 
 namespace cb {
 
+// Whether PETSc has been finalised (at exit): objects left to free are PETSc's no more.
+bool PetscGone();
+
+// While it lives, PETSc's errors are recorded (the first report of the one being raised), not
+// printed; PetscErrorText then quotes it.
+class PetscErrorCapture {
+ public:
+  PetscErrorCapture();
+  ~PetscErrorCapture();
+  PetscErrorCapture(const PetscErrorCapture&) = delete;
+  PetscErrorCapture& operator=(const PetscErrorCapture&) = delete;
+};
+
+// "PETSc <call> failed (error <code>): <the recorded message>".
+std::string PetscErrorText(PetscErrorCode code, const char* call);
+
+// Throws std::runtime_error with PetscErrorText when `code` is an error.
+void Try(PetscErrorCode code, const char* call);
+
 // Starts PETSc unless the process already has (see the top of the file); once per process.
 void StartPetsc();
 

@@ -30,23 +30,6 @@ bool PetscRunning() {
   return initialized && !finalized;
 }
 
-void Try(PetscErrorCode code, const char* call) {
-  if (code == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw std::runtime_error(std::string("PETSc ") + call + " failed (error " + std::to_string(code) +
-                           (text != nullptr ? std::string(": ") + text : "") + ")");
-}
-
-// PETSc's errors returned, not printed, while it lives.
-class QuietPetscErrors {
- public:
-  QuietPetscErrors() { PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); }
-  ~QuietPetscErrors() { PetscPopErrorHandler(); }
-  QuietPetscErrors(const QuietPetscErrors&) = delete;
-  QuietPetscErrors& operator=(const QuietPetscErrors&) = delete;
-};
-
 // Whether any process says so (a decision every process then takes).
 bool AnyProcess(bool mine) {
   int local = mine ? 1 : 0, any = 0;
@@ -401,7 +384,7 @@ DistributedSteps::DistributedSteps(const std::string& defaults, const std::strin
       objects_(std::make_unique<Objects>()) {
   StartPetsc();
   if (DistributedSize() > 1) RequireParallelLibraries();
-  QuietPetscErrors quiet;
+  PetscErrorCapture capture;
   const std::string prefix = OptionsPrefixFor("cbd", options_);
   Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
   const PetscErrorCode inserted = PetscOptionsInsertString(nullptr, options_.c_str());
@@ -445,7 +428,7 @@ const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step) {
 void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& equations,
                              const DistBounds* bounds, double residual_tol,
                              const SolveControls& controls, Vec* x, StepResult* result) {
-  QuietPetscErrors quiet;
+  PetscErrorCapture capture;
   Objects& o = *objects_;
   const int n = equations.layout.size();
   o.vi = bounds != nullptr;
