@@ -65,16 +65,23 @@ BodyContactModel::BodyContactModel(std::shared_ptr<const ElasticBody> body,
   std::vector<ScatterPattern::Entry> jacobian_entries;
   std::vector<ScatterPattern::Entry> curvature_entries;
   jacobian_entries.reserve(pairs_.size() * dim);
+  const Vec zero = Vec::Zero(d);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     const ContactPair& pair = pairs_[p];
     pair_reference_.push_back(body_->reference(pair.node));
     std::array<int, 3> dofs = {-1, -1, -1};
-    for (int c = 0; c < dim; ++c) {
-      dofs[c] = map.dof(pair.node, c);
-      if (dofs[c] >= 0) jacobian_entries.emplace_back(static_cast<int>(p), dofs[c]);
-    }
+    for (int c = 0; c < dim; ++c) dofs[c] = map.dof(pair.node, c);
     pair_dofs_.push_back(dofs);
-    if (!obstacles_[pair.obstacle]->is_curved()) continue;
+    const bool curved = obstacles_[pair.obstacle]->is_curved();
+    ObstacleLocal flat;  // a flat obstacle's gradient is its normal, the same everywhere
+    if (!curved) EvaluatePair(static_cast<int>(p), zero, Obstacle::Order::kGradient, &flat);
+    std::array<bool, 3> entry = {false, false, false};
+    for (int c = 0; c < dim; ++c) {
+      entry[c] = dofs[c] >= 0 && (curved || flat.gradient[c] != 0.0);
+      if (entry[c]) jacobian_entries.emplace_back(static_cast<int>(p), dofs[c]);
+    }
+    pair_gradient_entry_.push_back(entry);
+    if (!curved) continue;
     curved_pairs_.push_back(static_cast<int>(p));
     for (int b = 0; b < dim; ++b) {
       const int col = map.dof(pair.node, b);
@@ -154,7 +161,9 @@ void BodyContactModel::EvaluatePairs(const char* what, const Vec& u, const PairO
     }
     if (out.jacobian != nullptr) {
       for (int c = 0; c < dim; ++c) {
-        if (dofs[c] >= 0) jacobian_values[jacobian_slots[next_jacobian++]] += local.gradient[c];
+        if (pair_gradient_entry_[p][c]) {
+          jacobian_values[jacobian_slots[next_jacobian++]] += local.gradient[c];
+        }
       }
     }
     if (!with_curvature) continue;

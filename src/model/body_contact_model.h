@@ -79,9 +79,12 @@ class BodyContactModel final : public ContactModel {
   Vec load_;
   std::vector<Point> pair_reference_;          // X of each pair's node
   std::vector<std::array<int, 3>> pair_dofs_;  // its dofs, -1 where supported
-  std::vector<int> curved_pairs_;              // pairs on curved obstacles, in order
-  ScatterPattern jacobian_pattern_;            // row p on the free dofs of pair p's node
-  ScatterPattern curvature_pattern_;           // node blocks of pairs on curved obstacles
+  // Whether row p of grad phi has an entry on the pair's component c: a free component, and for
+  // a flat obstacle one its constant normal does not vanish on (a wall's pairs act on one dof).
+  std::vector<std::array<bool, 3>> pair_gradient_entry_;
+  std::vector<int> curved_pairs_;     // pairs on curved obstacles, in order
+  ScatterPattern jacobian_pattern_;   // row p on pair p's gradient entries
+  ScatterPattern curvature_pattern_;  // node blocks of pairs on curved obstacles
 };
 
 }  // namespace cb
