@@ -134,19 +134,19 @@ bool ContactBlockFactor::Factorize(const JacobianBlocks& blocks, const double* v
   if (!factor_holds_) return false;
   // M = S_cc + G^T W G (lower triangle; the pairs' dofs are increasing, and so are their
   // places among the contact dofs).
-  contact_block_ = s_cc_;
+  Mat& m = contact_block_.matrix();
+  m = s_cc_;
   for (int p = 0; p < blocks.num_pairs; ++p) {
     const double w = pair_spring[p];
     for (int s = blocks.pair_begin[p]; s < blocks.pair_begin[p + 1]; ++s) {
       const double ws = w * val[blocks.g_slot[s]];
       const int cs = contact_index_[blocks.pair_dof[s]];
       for (int t = blocks.pair_begin[p]; t <= s; ++t) {
-        contact_block_(cs, contact_index_[blocks.pair_dof[t]]) += ws * val[blocks.g_slot[t]];
+        m(cs, contact_index_[blocks.pair_dof[t]]) += ws * val[blocks.g_slot[t]];
       }
     }
   }
-  contact_block_llt_.compute(contact_block_);
-  return contact_block_llt_.info() == Eigen::Success;
+  return contact_block_.Factorize();
 }
 
 void ContactBlockFactor::ReadTrailingFactor() {
@@ -181,9 +181,8 @@ bool ContactBlockFactor::Forward(const Mat& b, Mat* out) {
 
 void ContactBlockFactor::ApplyMiddleInverse(Mat* v) const {
   const int nc_dofs = num_contact_dofs();
-  Mat tail = v->bottomRows(nc_dofs);
-  contact_block_llt_.solveInPlace(tail);
-  v->bottomRows(nc_dofs) = tail;
+  const int rows = static_cast<int>(v->rows());
+  contact_block_.SolveInPlace(v->data() + (rows - nc_dofs), rows, static_cast<int>(v->cols()));
 }
 
 bool ContactBlockFactor::Backward(Mat w, Mat* out) {

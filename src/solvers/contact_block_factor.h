@@ -8,12 +8,12 @@
 
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
 
-#include <Eigen/Cholesky>
 #include <vector>
 
 #include "core/sparse.h"
 #include "core/types.h"
 #include "solvers/cholmod_wrappers.h"
+#include "solvers/dense_cholesky.h"
 #include "solvers/jacobian_blocks.h"
 
 namespace cb {
@@ -72,8 +72,7 @@ class ContactBlockFactor {
   Vec diagonal_shift_;                      // D0
   Mat trailing_factor_;                     // L_cc
   Mat s_cc_;                                // L_cc L_cc^T - D0
-  Mat contact_block_;                       // M
-  Eigen::LLT<Mat> contact_block_llt_;
+  DenseCholesky contact_block_;             // M, then its factor
   int generation_ = 0;
   int num_analyses_ = 0;
   CholmodFactor factor_;  // of A + D0, c last
