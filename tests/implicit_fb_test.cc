@@ -311,9 +311,10 @@ void ExpectCondensedStepsMatchFullSteps(const StepProblem& step, const StartPoin
     ASSERT_TRUE(condensed->Factorize(jac)) << condensed->message();
     ASSERT_TRUE(condensed->Solve(f, &dx)) << condensed->message();
     // The same step up to rounding: the condensed step solves the full system at least as
-    // accurately as the LU, and where the LU's own residual shows a well-conditioned system the
-    // two steps agree (on the ill-conditioned iterates of the long arch both carry errors of
-    // about eps cond(J), and the LU's residual is the larger).
+    // accurately as the LU or to the refinement's target (a backward error of 1e-13, far below
+    // what a Newton step needs), and where the LU's own residual shows a well-conditioned system
+    // the two steps agree to that accuracy times cond(J) (on the ill-conditioned iterates of the
+    // long arch both carry errors of about eps cond(J), and the LU's residual is the larger).
     // Normwise backward errors ||J dx - f|| / (||J|| ||dx|| + ||f||), inf-norms.
     Vec row_sums = Vec::Zero(jac.rows());
     for (int j = 0; j < jac.outerSize(); ++j) {
@@ -325,10 +326,10 @@ void ExpectCondensedStepsMatchFullSteps(const StepProblem& step, const StartPoin
              (jac_norm * step.lpNorm<Eigen::Infinity>() + f.lpNorm<Eigen::Infinity>());
     };
     const double omega = backward(dx), omega_lu = backward(dx_lu);
-    EXPECT_LE(omega, std::max(4.0 * omega_lu, 1e-14)) << "iterate " << k;
+    EXPECT_LE(omega, std::max(4.0 * omega_lu, 1e-13)) << "iterate " << k;
     const double res_lu = (jac * dx_lu - f).norm() / f.norm();
     if (res_lu <= 1e-13) {
-      EXPECT_LE((dx - dx_lu).norm(), 1e-9 * dx_lu.norm() + 1e-13 * (1.0 + x.norm()))
+      EXPECT_LE((dx - dx_lu).norm(), 1e-7 * dx_lu.norm() + 1e-13 * (1.0 + x.norm()))
           << "iterate " << k;
     }
     ++compared;

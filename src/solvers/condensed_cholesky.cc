@@ -21,8 +21,9 @@ namespace {
 constexpr int kMaxRefinements = 8;
 // Systems with fewer dofs d go to the fallback LU.
 constexpr int kMinCondensedSize = 1000;
-// Refinement stops below this normwise backward error (a few ulps) ...
-constexpr double kTargetBackwardError = 8.0 * std::numeric_limits<double>::epsilon();
+// Refinement stops below this normwise backward error (about 450 ulps: a Newton step needs far
+// less, and a sweep costs a whole solve; docs/linear-solvers.md) ...
+constexpr double kTargetBackwardError = 1e-13;
 // ... and the answer is accepted at or below this one; otherwise the LU solves the system.
 constexpr double kAcceptBackwardError = 1e-12;
 
