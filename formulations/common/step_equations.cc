@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/timer.h"
@@ -154,6 +155,25 @@ bool StepEquationSystem::ResidualAndJacobian(const Vec& x, Vec* residual, SpMat*
                                   slots.data() + cache_->first_stiffness, jacobian->valuePtr());
   FillJacobian(x, unknowns, jacobian);
   return FillResidual(x, unknowns, residual);
+}
+
+bool StepEquationSystem::ResidualFloor(const Vec& x, Vec* floor) {
+  // A sum of n rounded terms is typically within sqrt(n) eps of their magnitudes' sum; a row of
+  // (29) has at most a few dozen.
+  constexpr double kRoundingUnits = 8.0;
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  Vec f;
+  if (!Residual(x, &f)) return false;  // sets u_ and reaction_
+  const ContactModel& model = *step_.model;
+  model.InternalForceMagnitudes(u_, &force_magnitudes_);
+  const double lambda = step_.base.lambda + x[layout_.dlambda()];
+  floor->setZero(layout_.size());
+  floor->head(layout_.d) =
+      kRoundingUnits * kEps *
+      ((force_magnitudes_ + std::abs(lambda) * model.load_pattern().cwiseAbs()) /
+           step_.scales.force +
+       reaction_.cwiseAbs());
+  return floor->allFinite();
 }
 
 // The rows from internal_, phi_ and reaction_ at u_.

@@ -86,6 +86,13 @@ class StepEquationSystem : public EquationSystem {
   void Jacobian(const Vec& x, SpMat* jacobian) final;
   bool ResidualAndJacobian(const Vec& x, Vec* residual, SpMat* jacobian) final;
   bool shares_residual_and_jacobian() const final { return true; }
+  // The rows of (29) / R sum the elements' forces, the load and the reactions: their floor is
+  // kRoundingUnits eps (sum_e |f_e,i| + |lambda f_i|) / R + eps |grad phi^T r^|_i
+  // (ContactModel::InternalForceMagnitudes), which a problem whose forces dwarf its force scale
+  // R lifts above the absolute test. The other rows sum terms of the size of the scaled
+  // unknowns and keep the absolute test (floor 0). Costs one residual evaluation and one of
+  // the magnitudes.
+  bool ResidualFloor(const Vec& x, Vec* floor) final;
   // The block structure of JacobianStructure with v = du, coupling = L (dF1/dr^ = -grad phi^T,
   // dF2/ddu = grad phi / L), y = (dlambda[, rho]); offered when the model has an energy (so
   // dF1/ddu is symmetric).
@@ -145,6 +152,7 @@ class StepEquationSystem : public EquationSystem {
   // Work storage reused across evaluations.
   Vec u_, internal_, phi_, reaction_, reaction_force_;
   SpMat curvature_, gap_jacobian_;
+  Vec force_magnitudes_;  // ContactModel::InternalForceMagnitudes, for ResidualFloor
 };
 
 // Runs `solver` on `system` from *x, recording the per-iteration history (with comp_res from

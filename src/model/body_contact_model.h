@@ -33,6 +33,9 @@ class BodyContactModel final : public ContactModel {
   double Energy(const Vec& u) const override { return body_->Energy(u); }
   void InternalForce(const Vec& u, Vec* force) const override { body_->InternalForce(u, force); }
   void Stiffness(const Vec& u, SpMat* stiffness) const override { body_->Stiffness(u, stiffness); }
+  void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const override {
+    body_->InternalForceMagnitudes(u, magnitudes);
+  }
   std::vector<std::pair<int, int>> StiffnessEntries() const override {
     return body_->StiffnessEntries();
   }

@@ -31,6 +31,15 @@ class ContactModel {
   virtual void InternalForce(const Vec& u, Vec* force) const = 0;
   // hess pi(u), the tangent stiffness (d x d). Its sparsity pattern does not depend on u.
   virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
+  // Per dof, the sum of the magnitudes of the terms InternalForce adds up in that row: the
+  // rounding floor of grad pi(u), and so of (29) (StepEquationSystem::ResidualFloor). The
+  // default, |K(u)| |u|, is exact for a linear model (grad pi = K u) and an upper bound
+  // otherwise; element-by-element models sum their elements' |f_e|.
+  virtual void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const {
+    SpMat stiffness;
+    Stiffness(u, &stiffness);
+    *magnitudes = stiffness.cwiseAbs() * u.cwiseAbs();
+  }
 
   // The stiffness as a stream of contributions, to assemble it straight into a larger matrix
   // (the Jacobian of a step) without an intermediate matrix: StiffnessEntries() lists the

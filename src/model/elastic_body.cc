@@ -43,6 +43,12 @@ std::vector<bool> DofMap::FixedComponents() const {
   return fixed;
 }
 
+void ElasticBody::InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const {
+  SpMat stiffness;
+  Stiffness(u, &stiffness);
+  *magnitudes = stiffness.cwiseAbs() * u.cwiseAbs();
+}
+
 Point ElasticBody::Position(int node, const Vec& u) const {
   Point x = reference(node);
   const DofMap& map = dofs();

@@ -54,6 +54,8 @@ class ElasticBody {
   virtual bool is_linear() const = 0;
   virtual double Energy(const Vec& u) const = 0;
   virtual void InternalForce(const Vec& u, Vec* force) const = 0;
+  // See ContactModel::InternalForceMagnitudes; the default is |K(u)| |u|.
+  virtual void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const;
   // Pattern fixed at construction.
   virtual void Stiffness(const Vec& u, SpMat* stiffness) const = 0;
   // The stiffness as a stream of contributions (see ContactModel::StiffnessEntries).

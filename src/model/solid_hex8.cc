@@ -294,6 +294,19 @@ void SolidHex8::InternalForce(const Vec& u, Vec* force) const {
     force->noalias() = pattern_ * u;
     return;
   }
+  AssembleElementForces(u, force, false);
+}
+
+void SolidHex8::InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const {
+  CheckSize(u, num_dofs(), "InternalForceMagnitudes");
+  if (is_linear()) {
+    *magnitudes = pattern_.cwiseAbs() * u.cwiseAbs();
+    return;
+  }
+  AssembleElementForces(u, magnitudes, true);
+}
+
+void SolidHex8::AssembleElementForces(const Vec& u, Vec* force, bool magnitudes) const {
   force->setZero(num_dofs());
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const Mat83 xyz = ElementCoordinates(e);
@@ -302,6 +315,7 @@ void SolidHex8::InternalForce(const Vec& u, Vec* force) const {
                            &result)) {
       result.force.setConstant(std::numeric_limits<double>::quiet_NaN());
     }
+    if (magnitudes) result.force = result.force.cwiseAbs();
     for (int a = 0; a < 8; ++a) {
       for (int c = 0; c < 3; ++c) {
         const int dof = dofs_.dof(elements_[e][a], c);

@@ -46,6 +46,8 @@ class SolidHex8 final : public ElasticBody {
   // the neo-Hookean energy is not defined; force and stiffness are then non-finite.
   double Energy(const Vec& u) const override;
   void InternalForce(const Vec& u, Vec* force) const override;
+  // Linear: |K| |u|; neo-Hookean: the sum over elements of |f_e| per row.
+  void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const override;
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
   // The pattern's non-zeros in storage order.
   std::vector<std::pair<int, int>> StiffnessEntries() const override;
@@ -68,6 +70,9 @@ class SolidHex8 final : public ElasticBody {
   std::vector<double> VonMisesStress(const Vec& u) const;
 
  private:
+  // The neo-Hookean elements' forces assembled into *force; with `magnitudes`, their entries'
+  // absolute values.
+  void AssembleElementForces(const Vec& u, Vec* force, bool magnitudes) const;
   // Element nodal reference coordinates (8 x 3).
   Eigen::Matrix<double, 8, 3> ElementCoordinates(std::size_t element) const;
   // Element nodal displacements (8 x 3), zero on supported components.

@@ -155,15 +155,24 @@ void Truss::InternalForce(const Vec& u, Vec* force) const {
     AddMemberForce(k, MemberKinematics(k, u), force);
 }
 
-inline void Truss::AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force) const {
+void Truss::InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const {
+  CheckSize(u, num_dofs(), "InternalForceMagnitudes");
+  magnitudes->setZero(num_dofs());
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    AddMemberForce(k, MemberKinematics(k, u), magnitudes, /*magnitudes=*/true);
+  }
+}
+
+inline void Truss::AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force,
+                                  bool magnitudes) const {
   const int d = dim();
   const TrussMember& m = members_[member];
   const double axial = m.youngs_modulus * m.area * kin.elongation / lengths_[member];
   const double scale = axial / kin.length;
   const MemberDofs& md = member_dofs_[member];
   for (int c = 0; c < d; ++c) {
-    const double f = scale * kin.delta[c];
-    if (md.dof[c] >= 0) (*force)[md.dof[c]] -= f;
+    const double f = magnitudes ? std::abs(scale * kin.delta[c]) : scale * kin.delta[c];
+    if (md.dof[c] >= 0) (*force)[md.dof[c]] += magnitudes ? f : -f;
     if (md.dof[d + c] >= 0) (*force)[md.dof[d + c]] += f;
   }
 }

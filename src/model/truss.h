@@ -32,6 +32,8 @@ class Truss final : public ElasticBody {
   bool is_linear() const override { return false; }
   double Energy(const Vec& u) const override;
   void InternalForce(const Vec& u, Vec* force) const override;
+  // Sum over members of |N e| per row (a member's force along it, at both ends).
+  void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const override;
   void Stiffness(const Vec& u, SpMat* stiffness) const override;
   std::vector<std::pair<int, int>> StiffnessEntries() const override { return stiffness_entries_; }
   void AddStiffness(const Vec& u, double scale, const int* slots, double* values) const override;
@@ -59,8 +61,9 @@ class Truss final : public ElasticBody {
   };
 
   Kinematics MemberKinematics(std::size_t member, const Vec& u) const;
-  // grad pi_m of one member added into *force.
-  void AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force) const;
+  // grad pi_m of one member added into *force; with `magnitudes`, its entries' absolute values.
+  void AddMemberForce(std::size_t member, const Kinematics& kin, Vec* force,
+                      bool magnitudes = false) const;
   // The stiffness blocks and, when force is not null, the internal force, member by member.
   template <int D>
   void AddStiffnessOf(const Vec& u, double scale, const int* slots, double* values,

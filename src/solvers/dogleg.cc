@@ -15,6 +15,7 @@ DoglegSolver::DoglegSolver(const SolverOptions& options)
 SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
                                   const IterationCallback& callback) {
   using internal::Finish;
+  using internal::FinishStuck;
   using internal::InfNorm;
   internal::CheckInitialPoint(system, x, name());
   linear_solver_->SetStructure(system.structure());
@@ -146,18 +147,18 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
           have_newton
               ? std::string()
               : " (singular Jacobian, Cauchy steps only: " + linear_solver_->message() + ")";
-      Finish(Status::kFailed,
-             "stagnation" + at() +
-                 (step_too_small ? ": the step no longer changes x (step_tol)"
-                                 : ": the trust region collapsed below step_tol") +
-                 why,
-             merit, f_, &summary);
+      FinishStuck(system, *x, Status::kFailed,
+                  "stagnation" + at() +
+                      (step_too_small ? ": the step no longer changes x (step_tol)"
+                                      : ": the trust region collapsed below step_tol") +
+                      why,
+                  merit, f_, options_.residual_tol, &summary);
       return summary;
     }
   }
-  Finish(Status::kLimitReached,
-         "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
-         &summary);
+  FinishStuck(system, *x, Status::kLimitReached,
+              "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
+              options_.residual_tol, &summary);
   return summary;
 }
 

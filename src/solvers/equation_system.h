@@ -45,6 +45,12 @@ class EquationSystem {
   // True when ResidualAndJacobian costs less than the two calls. Only then does a solver ask for
   // J ahead of knowing it needs it (a trial point may be rejected or meet the test).
   virtual bool shares_residual_and_jacobian() const { return false; }
+  // The rounding floor of each row at x: how far from 0 the row can be when evaluated in double
+  // precision at a root, from the sizes of the terms it sums. The solvers consult it only where
+  // they cannot go on (the line search stagnates or fails, or the iterations run out): a point
+  // whose every |F_i| is within max(residual_tol, floor_i) is then converged, not stuck. False
+  // (the default) when the system does not know its terms.
+  virtual bool ResidualFloor(const Vec& /*x*/, Vec* /*floor*/) { return false; }
   // The block structure of J (see JacobianStructure), or nullptr when it has none to offer.
   virtual const JacobianStructure* structure() const { return nullptr; }
 };

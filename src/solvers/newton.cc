@@ -17,6 +17,7 @@ NewtonSolver::NewtonSolver(const SolverOptions& options)
 SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
                                   const IterationCallback& callback) {
   using internal::Finish;
+  using internal::FinishStuck;
   internal::CheckInitialPoint(system, x, name());
   linear_solver_->SetStructure(system.structure());
   const int n = system.size();
@@ -73,12 +74,12 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
         nonmonotone ? *std::max_element(recent.begin(), recent.end()) : merit, dx_, &x_trial_,
         &f_trial_, &trial_merit, &summary, damped_in_a_row == 0 ? one_pass : nullptr);
     if (!search.accepted) {
-      Finish(
-          Status::kFailed,
+      FinishStuck(
+          system, *x, Status::kFailed,
           search.too_short
               ? "stagnation" + at() + ": the line-search step no longer changes x (step_tol)"
               : "line search failed" + at() + " after " + std::to_string(search.trials) + " trials",
-          merit, f_, &summary);
+          merit, f_, options_.residual_tol, &summary);
       return summary;
     }
     *x = x_trial_;
@@ -94,9 +95,9 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
       return summary;
     }
   }
-  Finish(Status::kLimitReached,
-         "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
-         &summary);
+  FinishStuck(system, *x, Status::kLimitReached,
+              "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
+              options_.residual_tol, &summary);
   return summary;
 }
 

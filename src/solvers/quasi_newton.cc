@@ -24,6 +24,7 @@ bool QuasiNewtonSolver::ApplyInverse(const Vec& v, Vec* x) {
 SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
                                        const IterationCallback& callback) {
   using internal::Finish;
+  using internal::FinishStuck;
   internal::CheckInitialPoint(system, x, name());
   linear_solver_->SetStructure(system.structure());
   const int n = system.size();
@@ -74,12 +75,13 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
           &f_trial_, &trial_merit, &summary);
       if (search.accepted) break;
       if (fresh) {
-        Finish(Status::kFailed,
-               search.too_short
-                   ? "stagnation" + at() + ": the line-search step no longer changes x (step_tol)"
-                   : "line search failed" + at() + " after " + std::to_string(search.trials) +
-                         " trials along the Newton direction of a fresh Jacobian",
-               merit, f_, &summary);
+        FinishStuck(
+            system, *x, Status::kFailed,
+            search.too_short
+                ? "stagnation" + at() + ": the line-search step no longer changes x (step_tol)"
+                : "line search failed" + at() + " after " + std::to_string(search.trials) +
+                      " trials along the Newton direction of a fresh Jacobian",
+            merit, f_, options_.residual_tol, &summary);
         return summary;
       }
       // A stale inverse gave a poor direction: retry with the true Jacobian at x.
@@ -113,9 +115,9 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
     dx_ = -(w_ + p_.col(num_updates_) * step_.dot(w_));
     ++num_updates_;
   }
-  Finish(Status::kLimitReached,
-         "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
-         &summary);
+  FinishStuck(system, *x, Status::kLimitReached,
+              "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
+              options_.residual_tol, &summary);
   return summary;
 }
 

@@ -122,6 +122,27 @@ void Finish(Status status, std::string message, double merit, const Vec& f,
   summary->final_residual_inf = InfNorm(f);
 }
 
+void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::string message,
+                 double merit, const Vec& f, double residual_tol, SolverSummary* summary) {
+  Vec floor;
+  const bool has_floor = system.ResidualFloor(x, &floor);
+  if (has_floor) {
+    ++summary->residual_evals;
+    ++summary->jacobian_evals;
+  }
+  bool within = has_floor && floor.size() == f.size();
+  for (Eigen::Index i = 0; within && i < f.size(); ++i) {
+    within = std::abs(f[i]) <= std::max(residual_tol, floor[i]);
+  }
+  if (within) {
+    Finish(Status::kConverged,
+           "every row within its rounding floor, ||F||_inf above residual_tol (" + message + ")",
+           merit, f, summary);
+    return;
+  }
+  Finish(status, std::move(message), merit, f, summary);
+}
+
 bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
                 SolverSummary* summary, SpMat* jacobian) {
   const bool evaluated = jacobian != nullptr

@@ -83,6 +83,12 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
 
 // Fills the summary's final fields and status.
 void Finish(Status status, std::string message, double merit, const Vec& f, SolverSummary* summary);
+// Finish for a solver that cannot go on at x (stagnation, a failed line search, the iteration
+// limit): kConverged instead of `status` when every |F_i| is within max(residual_tol, floor_i)
+// of EquationSystem::ResidualFloor, with `message` kept in the summary's message; the floor's
+// evaluation is counted as one residual and one Jacobian evaluation.
+void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::string message,
+                 double merit, const Vec& f, double residual_tol, SolverSummary* summary);
 
 // The start of every solve: evaluates F at the initial point into *f and *merit, and records the
 // initial merit. Returns true when the solve is already over: F cannot be evaluated there
