@@ -9,8 +9,9 @@ one process, and with dist-implicit-fb on two processes (mpirun -n 2, root-safe)
 the one-process run writes whole-body .vtu files as a serial run does (no .pvtu, no piece); the
 two-process collection (.pvd) lists a .pvtu at each of the serial collection's times; for every
 state the serial run saved (block_NNNN.vtu) the two-process run wrote block_NNNN.pvtu, which
-reads without an error or warning (VTK's vtkXMLPUnstructuredGridReader) and references one
-piece per process; its cells are the serial file's, each once (global_cell), and its points
+reads without an error or warning (VTK's vtkXMLGenericDataObjectReader, which dispatches to
+vtkXMLPUnstructuredGridReader) as an unstructured grid and references one piece per process;
+its cells are the serial file's, each once (global_cell), and its points
 each of the serial file's once where not marked a duplicate (vtkGhostType), every duplicate a
 copy of an owned point; the points, the displacement, the contact reactions and the cell data
 equal the serial run's at their global indices (the displacement to 1e-10, the others to 1e-8
@@ -21,20 +22,20 @@ of their largest magnitude). Last, a two-process run whose process 1 cannot writ
 Exit status 0 when every check holds, 1 when one fails (each failure printed), and 77 (ctest's
 SKIP_RETURN_CODE) when VTK's Python module is absent: Debian's python3-vtk9 provides it.
 """
+import json
 import os
 import shutil
 import subprocess
-import json
 import sys
 import xml.etree.ElementTree as ElementTree
 
-try:
-    import numpy
-    import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
-except ImportError:
-    print("skipped: VTK's Python module is absent (apt-get install python3-vtk9)")
-    sys.exit(77)
+# VTK's readers with their messages collected (and the skip without VTK): the 3-D output test's.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from check_vtk_hexahedra import ErrorCatcher, read  # noqa: E402 (exits 77 without VTK)
+
+import numpy  # noqa: E402
+import vtk  # noqa: E402
+from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 PROBLEM = ["--problem", "block", "--set", "n=8", "--save-every", "1"]
 DUPLICATE_POINT = 1  # vtkDataSetAttributes::DUPLICATEPOINT
@@ -57,26 +58,6 @@ def collection(directory):
             if d.get("part") == "0"]
 
 
-class Errors:
-    """VTK's error and warning messages, collected instead of printed."""
-
-    def __init__(self):
-        self.window = vtk.vtkStringOutputWindow()
-        vtk.vtkOutputWindow.SetInstance(self.window)
-
-    def take(self):
-        text = self.window.GetOutput().strip()
-        self.window = vtk.vtkStringOutputWindow()
-        vtk.vtkOutputWindow.SetInstance(self.window)
-        return text
-
-
-def read(reader, path, errors):
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput(), reader.GetErrorCode(), errors.take()
-
-
 def array(data, name):
     found = data.GetArray(name)
     return None if found is None else vtk_to_numpy(found)
@@ -88,17 +69,20 @@ def close(a, b, tolerance):
 
 def check_state(serial_path, pvtu_path, errors, failures):
     name = os.path.basename(pvtu_path)
-    serial, code, message = read(vtk.vtkXMLUnstructuredGridReader(), serial_path, errors)
+    serial, code, message = read(serial_path, errors)
     if code != 0 or message:
         failures.append(f"{serial_path}: the serial file does not read ({message})")
         return
-    reader = vtk.vtkXMLPUnstructuredGridReader()
-    grid, code, message = read(reader, pvtu_path, errors)
+    grid, code, message = read(pvtu_path, errors)
     if code != 0 or message:
         failures.append(f"{name}: VTK reports {message or f'error code {code}'}")
         return
-    if reader.GetNumberOfPieces() != 2:
-        failures.append(f"{name}: {reader.GetNumberOfPieces()} pieces for 2 processes")
+    if not isinstance(grid, vtk.vtkUnstructuredGrid):
+        failures.append(f"{name}: read as {grid.GetClassName()}, not an unstructured grid")
+        return
+    pieces = [p.get("Source") for p in ElementTree.parse(pvtu_path).getroot().iter("Piece")]
+    if len(pieces) != 2:
+        failures.append(f"{name}: pieces {pieces} for 2 processes")
     cells = array(grid.GetCellData(), "global_cell")
     points = array(grid.GetPointData(), "global_point")
     ghost = array(grid.GetPointData(), "vtkGhostType")
@@ -190,7 +174,7 @@ def main():
                         f"each of the serial run's times {serial_states}")
     if len(serial_states) < 1:
         failures.append("the serial run saved no state")
-    errors = Errors()
+    errors = ErrorCatcher()
     # Every saved state, the collection's and those a later save at the same time replaced.
     serial_files = sorted(f for f in os.listdir(os.path.join(out["serial"], "vtk"))
                           if f.endswith(".vtu"))
