@@ -97,9 +97,9 @@ namespace {
 // body's elements (indices in the order of Cells()); with `piece`, also the arrays that place
 // them in the whole body (global_point, global_cell, vtkGhostType).
 struct GridSelection {
-  std::vector<int> nodes;
-  std::vector<int> cells;
-  const BodyPiece* piece = nullptr;
+  const std::vector<int>& nodes;
+  const std::vector<int>& cells;
+  const BodyPiece* piece;
 };
 
 void WriteIndices(std::ofstream& out, const char* name, const std::vector<int>& indices) {
@@ -196,12 +196,11 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
 
 void WriteBodyVtu(const std::string& path, const Problem& problem, const State& state, int step) {
   const ElasticBody& body = problem.body->body();
-  GridSelection grid;
-  grid.nodes.resize(static_cast<std::size_t>(body.num_nodes()));
-  std::iota(grid.nodes.begin(), grid.nodes.end(), 0);
-  grid.cells.resize(body.Cells().size());
-  std::iota(grid.cells.begin(), grid.cells.end(), 0);
-  WriteGrid(path, problem, state, step, grid);
+  std::vector<int> nodes(static_cast<std::size_t>(body.num_nodes()));
+  std::iota(nodes.begin(), nodes.end(), 0);
+  std::vector<int> cells(body.Cells().size());
+  std::iota(cells.begin(), cells.end(), 0);
+  WriteGrid(path, problem, state, step, {nodes, cells, nullptr});
 }
 
 void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const State& state,
