@@ -23,6 +23,7 @@
 #include "harness/options.h"
 #include "harness/output_directory.h"
 #include "harness/plot_command.h"
+#include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
 #include "harness/run_json.h"
@@ -250,7 +251,8 @@ std::string SummaryCounts(const Problem& problem, const PathSummary& summary,
 
 // The run itself, in its claimed output directory.
 int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
-             const PathOptions& options, RunJson* record, std::string* reason) {
+             const PathOptions& options, OutputReadyWord* ready, RunJson* record,
+             std::string* reason) {
   // --start near: the reference formulation's solution, perturbed (near_start.h).
   std::optional<State> near;
   if (a.start_near) {
@@ -274,6 +276,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
   WriteParameters(a.out, problem);
   SnapshotWriter snapshots(a.out, problem, a.save_every);
+  ready->Ready(a.out + "/vtk");  // the other processes of a distributed run may write there now
   ObserverTee observers({&recorder, &snapshots});
   const PathSummary summary = [&] {
     const Activity solving("solving");
@@ -282,8 +285,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
   {
     const Activity writing("writing the final state");
-    WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
+    // The snapshot first: in a distributed run the last step all processes take together.
     snapshots.Save(summary.final_state, summary.accepted_steps, "final");
+    WriteFinalState(a.out, problem, summary.final_state, summary.accepted_steps);
   }
   record->runs = 1;
   record->attempts = summary.attempts;
@@ -300,9 +304,15 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
 }
 
 // A distributed run's processes other than 0 (petsc_dist.h): the same path, every decision
-// taken on values all processes share, and nothing written.
-int FollowRun(const Problem& problem, Formulation& formulation, const PathOptions& options) {
-  const PathSummary summary = TraceProblem(problem, formulation, options);
+// taken on values all processes share, and only their pieces of the saved states written, in
+// the directory process 0 has made ready (a failure there ends them quietly: process 0 says why).
+int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
+              const PathOptions& options) {
+  if (!AwaitOutputReady(a.out + "/vtk")) return kExitFailure;
+  SnapshotWriter pieces(a.out, problem, a.save_every);
+  const PathSummary summary = TraceProblem(problem, formulation, options, &pieces);
+  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();  // as process 0 does
+  pieces.Save(summary.final_state, summary.accepted_steps, "final");
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   return summary.status == Status::kConverged ? kExitOk : kExitFailure;
 }
@@ -330,12 +340,13 @@ int Run(const RunArguments& a, RunJson* record) {
   if (a.start_near && DistributedSize() > 1) {
     throw UsageError("--start near: not in a run of several processes");
   }
-  if (DistributedRank() != 0) return FollowRun(problem, *formulation, options);
+  if (DistributedRank() != 0) return FollowRun(a, problem, *formulation, options);
+  OutputReadyWord ready;  // to the other processes, even when this one fails before
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
   record->starts = {a.start_near ? "near" : ToString(a.start)};
   return InOutputDirectory(a, record, [&](std::string* reason) {
-    return TraceRun(a, problem, *formulation, options, record, reason);
+    return TraceRun(a, problem, *formulation, options, &ready, record, reason);
   });
 }
 

@@ -4,15 +4,22 @@
 #include <filesystem>
 #include <map>
 
+#include "formulations/petsc_dist/petsc_dist.h"
 #include "harness/interrupt.h"
+#include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/vtk_files.h"
+#include "harness/vtk_pieces.h"
 
 namespace cb::harness {
 
 SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
-    : directory_(directory), problem_(problem), every_(every) {
-  if (!problem_.body) return;
+    : directory_(directory),
+      problem_(problem),
+      every_(every),
+      process_(DistributedRank()),
+      processes_(DistributedSize()) {
+  if (!problem_.body || process_ != 0) return;
   nodes_ = std::make_unique<RecordWriter<NodeRow>>(directory, SnapshotsSchema(),
                                                    problem_.body->body().dim());
   contacts_ = std::make_unique<RecordWriter<PairRow>>(directory, SnapshotContactsSchema());
@@ -57,6 +64,42 @@ void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
 
 void SnapshotWriter::SaveAt(const State& state, int step, const std::string& label, double time) {
   if (!problem_.body) return;
+  char number[32];
+  std::snprintf(number, sizeof number, "_%04d", static_cast<int>(saved_.size()));
+  const std::string stem = problem_.name + number;
+  std::string file;
+  if (processes_ == 1) {
+    WriteRows(state, step, label);
+    file = WriteBody(stem, state, step);
+  } else {
+    OnEveryProcess("saving state " + stem, [&] {
+      if (process_ == 0) WriteRows(state, step, label);
+      file = WritePieces(stem, state, step);
+    });
+  }
+  saved_.push_back({file, step, label, state.lambda, time});
+  if (processes_ == 1) {
+    WriteCollection();
+  } else {  // the index and the collection once every piece is whole
+    OnEveryProcess("indexing state " + stem, [&] {
+      if (process_ != 0) return;
+      WriteIndex(stem, state);
+      WriteCollection();
+    });
+  }
+}
+
+void SnapshotWriter::WriteIndex(const std::string& stem, const State& state) const {
+  std::vector<std::string> cell_fields;  // the names, which an element-less body has too
+  for (const CellField& f : problem_.body->body().Restricted({})->CellFields(state.u)) {
+    cell_fields.push_back(f.name);
+  }
+  std::vector<std::string> pieces;
+  for (int p = 0; p < processes_; ++p) pieces.push_back(PieceFile(stem, p));
+  WriteBodyPvtu(directory_ + "/vtk/" + stem + ".pvtu", cell_fields, pieces);
+}
+
+void SnapshotWriter::WriteRows(const State& state, int step, const std::string& label) {
   for (const NodeRow& row : NodeRows(problem_, state, step, label)) {
     StopIfInterrupted("writing snapshots.csv");
     nodes_->Write(row);
@@ -65,13 +108,21 @@ void SnapshotWriter::SaveAt(const State& state, int step, const std::string& lab
     StopIfInterrupted("writing snapshot_contacts.csv");
     contacts_->Write(row);
   }
+}
+
+std::string SnapshotWriter::WriteBody(const std::string& stem, const State& state, int step) {
   StopIfInterrupted("saving a state");
-  char name[64];
-  std::snprintf(name, sizeof name, "_%04d.vtu", static_cast<int>(saved_.size()));
-  const std::string file = problem_.name + name;
+  const std::string file = stem + ".vtu";
   WriteBodyVtu(directory_ + "/vtk/" + file, problem_, state, step);
-  saved_.push_back({file, step, label, state.lambda, time});
-  WriteCollection();
+  return file;
+}
+
+std::string SnapshotWriter::WritePieces(const std::string& stem, const State& state, int step) {
+  StopIfInterrupted("saving a state");
+  const ElasticBody& body = problem_.body->body();
+  const BodyPiece piece = PieceOfProcess(body, ElementsOfEachProcess(body), process_, processes_);
+  WriteBodyPieceVtu(directory_ + "/vtk/" + PieceFile(stem, process_), problem_, state, step, piece);
+  return stem + ".pvtu";
 }
 
 void SnapshotWriter::WriteCollection() const {

@@ -9,6 +9,13 @@
 // save at the same time replaces an earlier one in it, as the final state replaces the regular
 // save of the last step); the obstacles are blocks of their own at every time. DIR/cells.csv
 // lists the elements (cell, corner, node). The CSV columns are those of record_schemas.h.
+//
+// In a distributed run of several processes (petsc_dist.h) every process keeps a writer and
+// saves the same states: each writes its piece of the body, DIR/vtk/<problem>_NNNN_pP.vtu
+// (vtk_pieces.h), and process 0 alone everything else, with DIR/vtk/<problem>_NNNN.pvtu, the
+// parallel index of the pieces, in place of the .vtu (the collection lists the .pvtu). Process 0
+// makes DIR/vtk before the others write (process_agreement.h); a save that fails on any process
+// fails on all of them.
 #pragma once
 
 #include <memory>
@@ -24,7 +31,8 @@ namespace cb::harness {
 class SnapshotWriter final : public PathObserver {
  public:
   // `every`: save every this many accepted steps (0: only critical points and the final state).
-  // Writes nothing for a problem that is not a body against obstacles (an LCP).
+  // Writes nothing for a problem that is not a body against obstacles (an LCP). Process 0 makes
+  // DIR/vtk and writes the files of one process; the others only their pieces.
   SnapshotWriter(const std::string& directory, const Problem& problem, int every);
 
   void OnAttempt(const StepAttempt& attempt) override;
@@ -50,12 +58,18 @@ class SnapshotWriter final : public PathObserver {
     std::string id;
   };
   void SaveAt(const State& state, int step, const std::string& label, double time);
+  void WriteRows(const State& state, int step, const std::string& label);
+  // The body at `state` as file `stem`.vtu, or in pieces with `stem`.pvtu; returns its file.
+  std::string WriteBody(const std::string& stem, const State& state, int step);
+  std::string WritePieces(const std::string& stem, const State& state, int step);
+  void WriteIndex(const std::string& stem, const State& state) const;
   void WriteObstacles();
   void WriteCollection() const;
 
   std::string directory_;
   const Problem& problem_;
   int every_ = 0;
+  int process_ = 0, processes_ = 1;
   std::unique_ptr<RecordWriter<NodeRow>> nodes_;
   std::unique_ptr<RecordWriter<PairRow>> contacts_;
   std::vector<Saved> saved_;

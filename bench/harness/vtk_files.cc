@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 
 #include "core/csv.h"
 
@@ -15,6 +16,8 @@ constexpr int kVtkTriangle = 5;
 constexpr int kVtkQuad = 9;
 constexpr int kVtkTetra = 10;
 constexpr int kVtkHexahedron = 12;
+// vtkDataSetAttributes::DUPLICATEPOINT: a point another piece owns.
+constexpr int kVtkDuplicatePoint = 1;
 
 // The VTK type of an element of `corners` nodes in a body of dimension `dim` (0: unknown).
 int VtkCellType(std::size_t corners, int dim) {
@@ -88,11 +91,43 @@ std::string XmlEscaped(const std::string& text) {
   return out;
 }
 
-void WriteBodyVtu(const std::string& path, const Problem& problem, const State& state, int step) {
+namespace {
+
+// The points and cells a .vtu holds: `nodes`, the body's node of each point; `cells`, the
+// body's elements (indices in the order of Cells()); with `piece`, also the arrays that place
+// them in the whole body (global_point, global_cell, vtkGhostType).
+struct GridSelection {
+  const std::vector<int>& nodes;
+  const std::vector<int>& cells;
+  const BodyPiece* piece;
+};
+
+void WriteIndices(std::ofstream& out, const char* name, const std::vector<int>& indices) {
+  out << "        <DataArray type=\"Int64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
+  for (int i : indices) out << ' ' << i;
+  out << "\n        </DataArray>\n";
+}
+
+void WriteGrid(const std::string& path, const Problem& problem, const State& state, int step,
+               const GridSelection& grid) {
   const BodyContactModel& model = *problem.body;
   const ElasticBody& body = model.body();
   const int dim = body.dim();
-  const std::vector<std::vector<int>> cells = body.Cells();
+  const std::vector<std::vector<int>> all_cells = body.Cells();
+  const bool whole = grid.piece == nullptr;
+  // The point of each node in this grid (-1: not in it).
+  std::vector<int> point_of(whole ? 0 : body.num_nodes(), -1);
+  for (std::size_t k = 0; k < grid.nodes.size() && !whole; ++k) {
+    point_of[grid.nodes[k]] = static_cast<int>(k);
+  }
+  std::vector<std::vector<int>> cells;
+  cells.reserve(grid.cells.size());
+  for (int c : grid.cells) {
+    cells.push_back(all_cells[c]);
+    if (!whole) {
+      for (int& node : cells.back()) node = point_of[node];
+    }
+  }
   std::vector<double> reaction(body.num_nodes(), 0.0);
   for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
 
@@ -106,11 +141,11 @@ void WriteBodyVtu(const std::string& path, const Problem& problem, const State& 
       << "      <DataArray type=\"Int32\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">"
       << step << "</DataArray>\n"
       << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << body.num_nodes() << "\" NumberOfCells=\"" << cells.size()
-      << "\">\n"
+      << "    <Piece NumberOfPoints=\"" << grid.nodes.size() << "\" NumberOfCells=\""
+      << cells.size() << "\">\n"
       << "      <Points>\n"
       << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int n = 0; n < body.num_nodes(); ++n) {
+  for (int n : grid.nodes) {
     const Point x = body.reference(n);
     out << "         ";
     for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? x[c] : 0.0);
@@ -124,7 +159,7 @@ void WriteBodyVtu(const std::string& path, const Problem& problem, const State& 
       << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
       << "        <DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" "
          "format=\"ascii\">\n";
-  for (int n = 0; n < body.num_nodes(); ++n) {
+  for (int n : grid.nodes) {
     const Point x = body.reference(n);
     const Point moved = body.Position(n, state.u);
     out << "         ";
@@ -133,9 +168,17 @@ void WriteBodyVtu(const std::string& path, const Problem& problem, const State& 
   }
   out << "        </DataArray>\n"
       << "        <DataArray type=\"Float64\" Name=\"contact_reaction\" format=\"ascii\">\n";
-  for (double r : reaction) out << "          " << r << '\n';
-  out << "        </DataArray>\n      </PointData>\n";
-  const std::vector<CellField> fields = body.CellFields(state.u);
+  for (int n : grid.nodes) out << "          " << reaction[n] << '\n';
+  out << "        </DataArray>\n";
+  if (!whole) {
+    WriteIndices(out, "global_point", grid.nodes);
+    out << "        <DataArray type=\"UInt8\" Name=\"vtkGhostType\" format=\"ascii\">\n         ";
+    for (bool duplicate : grid.piece->duplicate) out << ' ' << (duplicate ? kVtkDuplicatePoint : 0);
+    out << "\n        </DataArray>\n";
+  }
+  out << "      </PointData>\n";
+  const std::vector<CellField> fields =
+      whole ? body.CellFields(state.u) : body.Restricted(grid.cells)->CellFields(state.u);
   out << "      <CellData"
       << (fields.empty() ? "" : " Scalars=\"" + XmlEscaped(fields.front().name) + "\"") << ">\n";
   for (const CellField& field : fields) {
@@ -144,7 +187,54 @@ void WriteBodyVtu(const std::string& path, const Problem& problem, const State& 
     for (double v : field.values) out << ' ' << v;
     out << "\n        </DataArray>\n";
   }
+  if (!whole) WriteIndices(out, "global_cell", grid.cells);
   out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  CloseOrRemove(out, path);
+}
+
+}  // namespace
+
+void WriteBodyVtu(const std::string& path, const Problem& problem, const State& state, int step) {
+  const ElasticBody& body = problem.body->body();
+  std::vector<int> nodes(static_cast<std::size_t>(body.num_nodes()));
+  std::iota(nodes.begin(), nodes.end(), 0);
+  std::vector<int> cells(body.Cells().size());
+  std::iota(cells.begin(), cells.end(), 0);
+  WriteGrid(path, problem, state, step, {nodes, cells, nullptr});
+}
+
+void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const State& state,
+                       int step, const BodyPiece& piece) {
+  WriteGrid(path, problem, state, step, {piece.nodes, piece.cells, &piece});
+}
+
+void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+                   const std::vector<std::string>& pieces) {
+  std::ofstream out = Open(path);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+      << "    <PPointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
+      << "      <PDataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\"/>\n"
+      << "      <PDataArray type=\"Float64\" Name=\"contact_reaction\"/>\n"
+      << "      <PDataArray type=\"Int64\" Name=\"global_point\"/>\n"
+      << "      <PDataArray type=\"UInt8\" Name=\"vtkGhostType\"/>\n"
+      << "    </PPointData>\n"
+      << "    <PCellData"
+      << (cell_fields.empty() ? "" : " Scalars=\"" + XmlEscaped(cell_fields.front()) + "\"")
+      << ">\n";
+  for (const std::string& name : cell_fields) {
+    out << "      <PDataArray type=\"Float64\" Name=\"" << XmlEscaped(name) << "\"/>\n";
+  }
+  out << "      <PDataArray type=\"Int64\" Name=\"global_cell\"/>\n"
+      << "    </PCellData>\n"
+      << "    <PPoints>\n"
+      << "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+      << "    </PPoints>\n";
+  for (const std::string& piece : pieces) {
+    out << "    <Piece Source=\"" << XmlEscaped(piece) << "\"/>\n";
+  }
+  out << "  </PUnstructuredGrid>\n</VTKFile>\n";
   CloseOrRemove(out, path);
 }
 

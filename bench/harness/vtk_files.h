@@ -1,6 +1,7 @@
 // The VTK XML files of the saved states (ASCII, so that they diff and open anywhere): the body
-// at a state as an unstructured grid (.vtu), an obstacle's surface as poly data (.vtp), and
-// the collection (.pvd) that ParaView opens. Each file is written whole or removed: a VTK file
+// at a state as an unstructured grid (.vtu) or, in a distributed run, as pieces (.vtu) with
+// their parallel index (.pvtu), an obstacle's surface as poly data (.vtp), and the collection
+// (.pvd) that ParaView opens. Each file is written whole or removed: a VTK file
 // cut short is no VTK file.
 #pragma once
 
@@ -19,6 +20,28 @@ std::string XmlEscaped(const std::string& text);
 // point data the displacement (3 components, for "Warp By Vector") and the sum of the contact
 // reactions at each node; as cell data the body's CellFields; lambda and step as field data.
 void WriteBodyVtu(const std::string& path, const Problem& problem, const State& state, int step);
+
+// A part of the body: the elements `cells` (indices in the order of ElasticBody::Cells()) and
+// the nodes `nodes` (ascending) its points are, those of its cells among them; `duplicate`, one
+// per node, marks a node another piece owns (each node has exactly one owner).
+struct BodyPiece {
+  std::vector<int> nodes;
+  std::vector<int> cells;
+  std::vector<bool> duplicate;
+};
+
+// The piece of the body at `state`: as WriteBodyVtu for its points and cells, the cell data
+// those of its elements, and three arrays that place it in the whole body: global_point (the
+// node of each point, the point's index in WriteBodyVtu's file), global_cell (likewise for
+// each cell) and vtkGhostType (1, VTK's DUPLICATEPOINT, where `duplicate`), so that the pieces
+// of an index hold every point of the body once without the duplicates.
+void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const State& state,
+                       int step, const BodyPiece& piece);
+
+// The parallel index (.pvtu, VTK's PUnstructuredGrid) of the pieces `pieces` (paths relative to
+// it) that WriteBodyPieceVtu wrote, whose cell data are `cell_fields`.
+void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+                   const std::vector<std::string>& pieces);
 
 // An obstacle's surface, its id as field data.
 void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,

@@ -7,8 +7,10 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "formulations/common/config.h"
+#include "model/elastic_body.h"
 #include "step/formulation.h"
 
 namespace cb {
@@ -20,6 +22,12 @@ bool DistAvailable();
 // distributed formulation has started PETSc (and MPI), and always without PETSc.
 int DistributedRank();
 int DistributedSize();
+
+// The elements of `body` (indices in the order of ElasticBody::Cells()) each process evaluates,
+// one list per process, as the distributed step system last partitioned `body` on this process
+// (element_partition.h; every process holds the same lists). Empty when no distributed solve
+// has partitioned `body` (one process without a dist-* solve yet, another body, no PETSc).
+std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body);
 
 // Registry factories; without PETSc they throw std::invalid_argument. Backend option
 // `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h).

@@ -1,0 +1,101 @@
+#include "harness/process_agreement.h"
+
+#include <climits>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "core/csv.h"
+#include "formulations/petsc_dist/petsc_dist.h"
+
+#ifdef CONTACTBENCH_HAVE_PETSC
+#include <mpi.h>
+#endif
+
+namespace cb::harness {
+
+namespace {
+
+bool Distributed() { return DistributedSize() > 1; }
+
+// The lowest process where `failed`, or INT_MAX where none (a collective).
+int LowestFailing(bool failed) {
+  int lowest = failed ? DistributedRank() : INT_MAX;
+#ifdef CONTACTBENCH_HAVE_PETSC
+  int mine = lowest;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+#endif
+  return lowest;
+}
+
+// Process 0's word: 1 ready, 0 failed (a collective).
+bool ProcessZeroSays(bool ready) {
+  int word = ready ? 1 : 0;
+#ifdef CONTACTBENCH_HAVE_PETSC
+  MPI_Bcast(&word, 1, MPI_INT, 0, MPI_COMM_WORLD);
+#endif
+  return word == 1;
+}
+
+// A file made and removed in `directory`: the directory process 0 prepared must be the one this
+// process sees (a file system every process shares) and writable from here.
+void ProbeDirectory(const std::string& directory) {
+  const std::string probe =
+      directory + "/.contactbench_write_test_" + std::to_string(DistributedRank());
+  {
+    std::ofstream f(probe);
+    if (!f) {
+      throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
+                                  " cannot write there (is --out on a file system every "
+                                  "process shares?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::remove(probe, ec);
+}
+
+void ProbeOnEveryProcess(const std::string& directory) {
+  OnEveryProcess("checking that it can write in " + directory, [&] { ProbeDirectory(directory); });
+}
+
+}  // namespace
+
+void OnEveryProcess(const std::string& what, const std::function<void()>& work) {
+  if (!Distributed()) {
+    work();
+    return;
+  }
+  std::exception_ptr failure;
+  try {
+    work();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  const int lowest = LowestFailing(failure != nullptr);
+  if (failure) std::rethrow_exception(failure);
+  if (lowest != INT_MAX) {
+    throw std::runtime_error("process " + std::to_string(lowest) + " failed while " + what +
+                             " (its standard error says why)");
+  }
+}
+
+OutputReadyWord::~OutputReadyWord() {
+  if (!given_ && Distributed()) ProcessZeroSays(false);
+}
+
+void OutputReadyWord::Ready(const std::string& directory) {
+  if (given_ || !Distributed()) return;
+  given_ = true;
+  ProcessZeroSays(true);
+  ProbeOnEveryProcess(directory);
+}
+
+bool AwaitOutputReady(const std::string& directory) {
+  if (!Distributed()) return true;
+  if (!ProcessZeroSays(false)) return false;
+  ProbeOnEveryProcess(directory);
+  return true;
+}
+
+}  // namespace cb::harness

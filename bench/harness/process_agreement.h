@@ -1,0 +1,40 @@
+// What the processes of a distributed run (formulations/petsc_dist/petsc_dist.h) agree on when
+// more than process 0 writes: that process 0 has made the output directory ready, and whether
+// a write failed anywhere. A failure on one process is then a failure on all of them, at the
+// same point, and no process is left waiting for another that has given up. With one process
+// these calls only run the work (no MPI).
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace cb::harness {
+
+// Runs `work` on this process; then, a collective (every process calls it at the same point),
+// throws on every process when it threw on any: there its own exception, elsewhere a
+// std::runtime_error naming the lowest failing process and `what` it was doing.
+void OnEveryProcess(const std::string& what, const std::function<void()>& work);
+
+// Process 0's word to the others that the output directory is ready (created, claimed, its
+// vtk/ folder made): Ready() gives it once; if it never did, the destructor gives the word of a
+// failure instead, so that the others stop rather than wait for a process 0 that failed before.
+// With one process, nothing.
+class OutputReadyWord {
+ public:
+  OutputReadyWord() = default;
+  ~OutputReadyWord();
+  OutputReadyWord(const OutputReadyWord&) = delete;
+  OutputReadyWord& operator=(const OutputReadyWord&) = delete;
+
+  // Then every process checks that it can write in `directory` (OnEveryProcess).
+  void Ready(const std::string& directory);
+
+ private:
+  bool given_ = false;
+};
+
+// The other processes' side: waits for process 0's word, false when it failed (process 0 says
+// why); then checks, with every process, that this one can write in `directory`.
+bool AwaitOutputReady(const std::string& directory);
+
+}  // namespace cb::harness
