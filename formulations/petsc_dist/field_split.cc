@@ -116,6 +116,18 @@ struct Augmented {
   ::Vec weights = nullptr, scaled = nullptr, work = nullptr;
 };
 
+// Calls visit(column, value) on each entry of row `row` (owned here) of `j`.
+template <class Visit>
+PetscErrorCode VisitRow(::Mat j, PetscInt row, Visit visit) {
+  PetscInt count = 0;
+  const PetscInt* cols = nullptr;
+  const PetscScalar* vals = nullptr;
+  PetscCall(MatGetRow(j, row, &count, &cols, &vals));
+  for (PetscInt k = 0; k < count; ++k) visit(cols[k], vals[k]);
+  PetscCall(MatRestoreRow(j, row, &count, &cols, &vals));
+  return 0;
+}
+
 PetscErrorCode DestroyAugmented(PC pc) {
   Augmented* a = nullptr;
   PetscCall(PCShellGetContext(pc, &a));
@@ -144,16 +156,11 @@ PetscErrorCode PairWeights(::Mat j, const Augmented& a, ::Vec weights, ::Vec sca
   for (PetscInt p = 0; p < a.nc; ++p) {
     const PetscInt row = a.d + a.nc + p;
     if (row < row_first || row >= row_last) continue;
-    PetscInt count = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PetscCall(MatGetRow(j, row, &count, &cols, &vals));
     PetscScalar ga = 0.0, rb = 0.0;
-    for (PetscInt k = 0; k < count; ++k) {
-      if (cols[k] == a.d + p) ga = vals[k];
-      if (cols[k] == a.d + a.nc + p) rb = vals[k];
-    }
-    PetscCall(MatRestoreRow(j, row, &count, &cols, &vals));
+    PetscCall(VisitRow(j, row, [&](PetscInt col, PetscScalar value) {
+      if (col == a.d + p) ga = value;
+      if (col == a.d + a.nc + p) rb = value;
+    }));
     const PetscScalar norm = ga * ga + rb * rb;
     const PetscScalar w = norm > 0.0 && std::abs(rb) <= a.cutoff * std::abs(ga) ? ga / norm : 0.0;
     PetscCall(VecSetValue(weights, a.d + p, w, INSERT_VALUES));
@@ -176,17 +183,12 @@ PetscErrorCode Gamma(::Mat j, const Augmented& a, PetscReal* gamma) {
   for (PetscInt row = row_first; row < row_last; ++row) {
     const bool du_row = row < a.d, gap_row = row >= a.d && row < a.d + a.nc;
     if (!du_row && !gap_row) continue;
-    PetscInt count = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PetscCall(MatGetRow(j, row, &count, &cols, &vals));
     PetscReal norm = 0.0;
-    for (PetscInt k = 0; k < count; ++k) {
-      if (du_row && cols[k] == row) stiff = std::max(stiff, std::abs(vals[k]));
-      if (gap_row && cols[k] < a.d) norm += vals[k] * vals[k];
-    }
+    PetscCall(VisitRow(j, row, [&](PetscInt col, PetscScalar value) {
+      if (du_row && col == row) stiff = std::max(stiff, std::abs(value));
+      if (gap_row && col < a.d) norm += value * value;
+    }));
     gap = std::max(gap, norm);
-    PetscCall(MatRestoreRow(j, row, &count, &cols, &vals));
   }
   PetscReal local[2] = {stiff, gap}, global[2] = {0.0, 0.0};
   PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_REAL, MPIU_MAX,
@@ -226,17 +228,15 @@ PetscErrorCode MakeT(::Mat j, Augmented* a) {
     const PetscInt gap_row = a->d + p;
     if (gap_row < row_first || gap_row >= row_last || w[gap_row - row_first] == 0.0) continue;
     const PetscScalar weight = w[gap_row - row_first], a_weight = aw[gap_row - row_first];
-    PetscInt count = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PetscCall(MatGetRow(j, gap_row, &count, &cols, &vals));
-    for (PetscInt k = 0; k < count; ++k) {
-      if (cols[k] >= a->d) continue;
-      const PetscInt cols2[2] = {gap_row, a->d + a->nc + p};
-      const PetscScalar v2[2] = {gamma * a_weight * vals[k], -gamma * weight * vals[k]};
-      PetscCall(MatSetValues(a->t, 1, &cols[k], 2, cols2, v2, ADD_VALUES));
-    }
-    PetscCall(MatRestoreRow(j, gap_row, &count, &cols, &vals));
+    // The du row k of T gets gamma B_p[k] (a_p w_p, -w_p) in the columns of (30)_p and (31)_p.
+    PetscErrorCode code = 0;
+    PetscCall(VisitRow(j, gap_row, [&](PetscInt col, PetscScalar value) {
+      if (col >= a->d || code != 0) return;
+      const PetscInt targets[2] = {gap_row, a->d + a->nc + p};
+      const PetscScalar values[2] = {gamma * a_weight * value, -gamma * weight * value};
+      code = MatSetValues(a->t, 1, &col, 2, targets, values, ADD_VALUES);
+    }));
+    PetscCall(code);
   }
   PetscCall(VecRestoreArrayRead(a->weights, &w));
   PetscCall(VecRestoreArrayRead(a->scaled, &aw));
