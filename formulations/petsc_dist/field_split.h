@@ -3,7 +3,8 @@
 // removed, where algebraic multigrid works), split "1" every other row (g^, r^, dlambda[, rho]:
 // the gap, complementarity, step-constraint and (32) rows, a few per pair, without the diagonal
 // entries a smoother needs; docs/scale-out.md "Linear solves"). Split 0 carries the body's rigid
-// modes as its near-null space, which GAMG builds its coarse spaces from.
+// modes as its near-null space, which GAMG builds its coarse spaces from. The iterative solve
+// applies the split to an augmented system (SetAugmentedSplit) rather than to the Jacobian.
 #pragma once
 
 #include <petscpc.h>
@@ -29,7 +30,7 @@ PetscErrorCode SetDisplacementSplit(PC pc, const ElasticBody& body, PetscInt fir
 // du block is regular. The inner split (SetDisplacementSplit) takes the options under the
 // prefix "al_" after pc's own; "-augmented_alpha" (gamma over the stiffness, default 10) and
 // "-augmented_cutoff" (|b| / |a| below which a pair counts as closed, default 1e-2) under pc's.
-// `model` must outlive the solves. Collective.
+// Collective.
 PetscErrorCode SetAugmentedSplit(PC pc, const BodyContactModel& model, PetscInt first,
                                  PetscInt last);
 
