@@ -28,21 +28,24 @@ enum class DistKind { kImplicitFb, kNonsmoothFb, kActiveSet, kRsls, kSsls };
 
 bool IsVi(DistKind kind) { return kind == DistKind::kRsls || kind == DistKind::kSsls; }
 
-// The linear solves `linear=` names. direct: MUMPS on the whole system. amg: FGMRES with a
-// Schur-complement field split (field_split.h): GAMG on the du block, whose rigid modes are free
-// where contact alone holds the body (so the coarsest level is solved by SVD, a pseudo-inverse),
-// and MUMPS on the small selfp Schur complement of the contact rows. Its relative tolerance only
-// paces Newton (the stopping test ||F||_inf <= residual_tol is on the true residual); 1e-8 keeps
-// the direct solve's Newton iterations.
+// The linear solves `linear=` names. direct: MUMPS on the whole system. amg: FGMRES with the
+// augmented Schur-complement field split of field_split.h (a PCSHELL whose inner field split,
+// options prefix "al_", sees the system with gamma B^T B added to the stiffness block where
+// pairs are closed): GAMG on the du block, whose rigid modes can be free where contact alone
+// holds the body (so the coarsest level is solved by SVD, a pseudo-inverse), and MUMPS on the
+// small selfp Schur complement of the contact rows. Its relative tolerance only paces Newton
+// (the stopping test ||F||_inf <= residual_tol is on the true residual); 1e-8 keeps the direct
+// solve's Newton iterations.
 std::string LinearOptions(const std::string& linear) {
   if (linear == "amg") {
     return " -ksp_type fgmres -ksp_gmres_restart 100 -ksp_rtol 1e-8 -ksp_max_it 1000"
-           " -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper"
-           " -pc_fieldsplit_schur_precondition selfp -fieldsplit_0_ksp_type preonly"
-           " -fieldsplit_0_pc_type gamg -fieldsplit_0_mg_coarse_sub_pc_type svd"
-           " -fieldsplit_0_mg_coarse_sub_pc_svd_zero_sing 1e-8"
-           " -fieldsplit_1_ksp_type preonly -fieldsplit_1_pc_type lu"
-           " -fieldsplit_1_pc_factor_mat_solver_type mumps";
+           " -pc_type shell -augmented_alpha 10 -augmented_cutoff 1e-2 -al_pc_fieldsplit_type schur"
+           " -al_pc_fieldsplit_schur_fact_type upper -al_pc_fieldsplit_schur_precondition selfp"
+           " -al_fieldsplit_0_ksp_type preonly -al_fieldsplit_0_pc_type gamg"
+           " -al_fieldsplit_0_mg_coarse_sub_pc_type svd"
+           " -al_fieldsplit_0_mg_coarse_sub_pc_svd_zero_sing 1e-8"
+           " -al_fieldsplit_1_ksp_type preonly -al_fieldsplit_1_pc_type lu"
+           " -al_fieldsplit_1_pc_factor_mat_solver_type mumps";
   }
   return " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
 }

@@ -163,20 +163,23 @@ struct DistributedSteps::Objects {
     own_dofs.assign(touched.begin(), touched.end());
     model = s.model;
     size = n;
-    if (!vi) SplitWhereAsked(body);
+    if (!vi) SplitWhereAsked(dynamic_cast<const BodyContactModel&>(*s.model));
   }
 
   // A field-split preconditioner (chosen by the options) gets the du rows and the rest (SNESReset
   // above has cleared the splits of an earlier model). SNESVI solves on reduced rows: not there.
-  void SplitWhereAsked(const ElasticBody& body) const {
+  void SplitWhereAsked(const BodyContactModel& model) const {
     KSP ksp = nullptr;
     PC pc = nullptr;
-    PetscBool split = PETSC_FALSE;
+    PetscBool split = PETSC_FALSE, shell = PETSC_FALSE;
     Try(SNESGetKSP(snes, &ksp), "SNESGetKSP");
     Try(KSPGetPC(ksp, &pc), "KSPGetPC");
     Try(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split),
         "PetscObjectTypeCompare");
-    if (split) Try(SetDisplacementSplit(pc, body, first, last), "PCFieldSplitSetIS");
+    Try(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell),
+        "PetscObjectTypeCompare");
+    if (split) Try(SetDisplacementSplit(pc, model.body(), first, last), "PCFieldSplitSetIS");
+    if (shell) Try(SetAugmentedSplit(pc, model, first, last), "SetAugmentedSplit");
   }
 
   // The iterate of `v` on every process, into `full`.
