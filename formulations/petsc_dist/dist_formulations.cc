@@ -83,7 +83,9 @@ class DistFormulation final : public Formulation {
 
   void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
                StepResult* result) override {
-    const StepProblem& local = steps_.ContactOnlyStep(step);
+    const bool has_rho = kind_ == DistKind::kImplicitFb;
+    const StepProblem& local = steps_.ContactOnlyStep(
+        step, StepEquationLayout{step.num_dofs(), step.num_pairs(), has_rho}.size());
     const double tol = options_.solver_options.residual_tol;
     Vec x;
     switch (kind_) {
