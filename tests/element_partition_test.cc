@@ -1,7 +1,8 @@
-// The partition of the element list (formulations/petsc_dist/element_partition.h) and the
-// restricted bodies it gives each process (ElasticBody::Restricted): every element is owned
-// once, by the process holding its lowest free dof, and the restricted bodies' energies, forces
-// and stiffnesses sum to the whole body's, for each element kind.
+// The partition of the element list and of the contact pairs
+// (formulations/petsc_dist/element_partition.h) and the restricted bodies it gives each process
+// (ElasticBody::Restricted): every element and every pair is owned once, by the process holding
+// its (node's) lowest free dof, and the restricted bodies' energies, forces and stiffnesses sum
+// to the whole body's, for each element kind.
 #include "formulations/petsc_dist/element_partition.h"
 
 #include <gtest/gtest.h>
@@ -110,6 +111,32 @@ TEST(ElementPartition, ElementsGoToTheOwnerOfTheirLowestFreeDof) {
   EXPECT_FALSE(partition[1].empty());
 }
 
+TEST(ElementPartition, PairsGoOnceToTheOwnerOfTheirNodesLowestFreeDof) {
+  for (const Problem& p : {MakeProblem("block", {{"n", "6"}}), MakeProblem("arch-curved", {})}) {
+    SCOPED_TRACE(p.name);
+    const ElasticBody& body = p.body->body();
+    const auto& pairs = p.body->pairs();
+    const std::vector<int> starts = EvenRanges(body.num_dofs(), 3);
+    const auto partition = PartitionPairs(body, pairs, starts);
+    ASSERT_EQ(partition.size(), 3u);
+    std::vector<int> owners(pairs.size(), 0);
+    for (std::size_t k = 0; k < partition.size(); ++k) {
+      EXPECT_TRUE(std::is_sorted(partition[k].begin(), partition[k].end()));
+      for (int q : partition[k]) {
+        ++owners[static_cast<std::size_t>(q)];
+        const int node = pairs[static_cast<std::size_t>(q)].node;
+        int lowest = body.num_dofs();
+        for (int c = 0; c < body.dim(); ++c) {
+          if (body.dofs().dof(node, c) >= 0) lowest = std::min(lowest, body.dofs().dof(node, c));
+        }
+        EXPECT_GE(lowest, starts[k]);
+        EXPECT_LT(lowest, starts[k + 1]);
+      }
+    }
+    EXPECT_TRUE(std::all_of(owners.begin(), owners.end(), [](int n) { return n == 1; }));
+  }
+}
+
 TEST(ElementPartition, RefusesBadInput) {
   const Problem p = MakeProblem("block", {{"n", "2"}});
   const ElasticBody& body = p.body->body();
@@ -117,6 +144,7 @@ TEST(ElementPartition, RefusesBadInput) {
   EXPECT_THROW(body.Restricted({-1}), std::invalid_argument);
   EXPECT_THROW(RowOwner(body.num_dofs(), {0, body.num_dofs()}), std::invalid_argument);
   EXPECT_THROW(PartitionElements(body, {0}), std::invalid_argument);
+  EXPECT_THROW(PartitionPairs(body, p.body->pairs(), {0}), std::invalid_argument);
 }
 
 }  // namespace

@@ -9,9 +9,11 @@
 // What the serial ones add around their Newton is not repeated: nonsmooth-fb's restart from the
 // cold start, the serial solvers' choice per start kind (StartSolvers), implicit-fb's
 // alternative solvers (dogleg, quasi-Newton): PETSc's own are chosen with -snes_type.
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/nonsmooth/nonsmooth.h"
@@ -61,6 +63,47 @@ std::string DefaultOptions(DistKind kind, const SolverOptions& solver, const std
          std::to_string(solver.max_iterations);
 }
 
+// The MCP's Jacobian (petsc_mcp.h) as a column-compressed matrix for DistributedSteps, made once
+// per pattern of the step equations' Jacobian and afterwards filled in place (the matrix of the
+// previous call, which DistributedSteps passes again).
+class McpJacobianInPlace {
+ public:
+  void Fill(McpStepEquations& system, const Vec& y, SpMat* jacobian) {
+    system.Jacobian(y, &s_);
+    if (rows_.size == 0 || !SamePattern(rows_, s_) || jacobian != shaped_) {
+      rows_ = MakeMcpRowMap(system.layout(), s_);
+      *jacobian = McpJacobian(rows_, s_);
+      shaped_ = jacobian;
+      StoragePositions(*jacobian);
+    }
+    FillMcpValues(rows_, s_, values_.data());
+    double* to = jacobian->valuePtr();
+    for (std::size_t k = 0; k < values_.size(); ++k) to[positions_[k]] = values_[k];
+  }
+
+ private:
+  // Where the map's entries (row by row) lie in the column-compressed storage of `m`.
+  void StoragePositions(const SpMat& m) {
+    positions_.clear();
+    for (int i = 0; i < rows_.size; ++i) {
+      for (int k = rows_.row_start[i]; k < rows_.row_start[i + 1]; ++k) {
+        const int column = rows_.columns[k];
+        const int* first = m.innerIndexPtr() + m.outerIndexPtr()[column];
+        const int* last = m.innerIndexPtr() + m.outerIndexPtr()[column + 1];
+        positions_.push_back(
+            static_cast<int>(std::lower_bound(first, last, i) - m.innerIndexPtr()));
+      }
+    }
+    values_.assign(positions_.size(), 0.0);
+  }
+
+  SpMat s_;
+  McpRowMap rows_;
+  const SpMat* shaped_ = nullptr;
+  std::vector<int> positions_;
+  std::vector<double> values_;
+};
+
 class DistFormulation final : public Formulation {
  public:
   DistFormulation(std::string name, DistKind kind, const ImplicitFbOptions& options,
@@ -86,7 +129,9 @@ class DistFormulation final : public Formulation {
 
   void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
                StepResult* result) override {
-    const StepProblem& local = steps_.ContactOnlyStep(step);
+    const bool has_rho = kind_ == DistKind::kImplicitFb;
+    const StepProblem& local = steps_.ContactOnlyStep(
+        step, StepEquationLayout{step.num_dofs(), step.num_pairs(), has_rho}.size());
     const double tol = options_.solver_options.residual_tol;
     Vec x;
     switch (kind_) {
@@ -115,16 +160,10 @@ class DistFormulation final : public Formulation {
         McpStepEquations system(local, cache_);
         const McpBounds bounds = MakeMcpBounds(step);
         x = MakeMcpStart(step, start, bounds);
-        McpRowMap rows;
-        SpMat s;
+        McpJacobianInPlace mcp;
         LocalStepEquations equations{
             [&](const Vec& y, Vec* f) { return McpFunction(system, y, f); },
-            [&](const Vec& y, SpMat* jacobian) {
-              system.Jacobian(y, &s);
-              if (rows.size == 0 || !SamePattern(rows, s)) rows = MakeMcpRowMap(system.layout(), s);
-              *jacobian = McpJacobian(rows, s);
-            },
-            system.layout()};
+            [&](const Vec& y, SpMat* jacobian) { mcp.Fill(system, y, jacobian); }, system.layout()};
         const DistBounds dist_bounds{bounds.lower, bounds.upper};
         steps_.Solve(step, equations, &dist_bounds, tol, controls, &x, result);
         break;

@@ -7,12 +7,14 @@
 #include <exception>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
 #include "formulations/petsc_dist/element_partition.h"
 #include "formulations/petsc_dist/field_split.h"
+#include "formulations/petsc_dist/own_pairs_model.h"
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
@@ -101,14 +103,37 @@ struct DistributedSteps::Objects {
   ::Mat jacobian = nullptr;
   PetscInt first = 0, last = 0;  // this process's rows [first, last)
 
-  // What the objects were made for, and the contact-only model of contact_model_of.
+  // What the objects were made for: the model, the system's size, and this process's share.
   const ContactModel* model = nullptr;
-  const ContactModel* contact_model_of = nullptr;
   int size = 0;
-  std::shared_ptr<const BodyContactModel> contact_only;
-  std::shared_ptr<const ElasticBody> own;  // this process's elements
-  std::vector<PetscInt> own_dofs;          // the rows its elements touch, ascending
+  bool split_pending = false;                         // SplitWhereAsked not yet run for `model`
+  std::shared_ptr<const OwnPairsModel> contact_only;  // its pairs, without elements
+  std::shared_ptr<const ElasticBody> own;             // its elements
   StepProblem contact_only_step;
+  // The rows this process evaluates (see the top of the header): those of its own range, as a
+  // mask, and the others, ascending.
+  std::vector<char> evaluates_own_row;
+  std::vector<PetscInt> evaluated_remote_rows;
+  // The rows its elements touch, in its range and outside it.
+  std::vector<PetscInt> element_local_rows, element_remote_rows;
+  // What Residual sends to other processes: evaluated_remote_rows, then element_remote_rows.
+  std::vector<PetscInt> remote_rows;
+  std::vector<PetscScalar> remote_values;
+  // The elements' stiffness in compressed-column storage (its slots for AddStiffness).
+  ScatterPattern element_pattern;
+
+  // The Jacobian's entries as PETSc's COO lists (MatSetPreallocationCOO), made once per pattern
+  // of the local Jacobian: its kept entries (their positions in its storage), the elements'
+  // stiffness in storage order, every diagonal entry of this process's rows (SNESVINEWTONSSLS
+  // adds to the diagonal), and the kept entries of earlier patterns on this model as zeros (a
+  // matrix assembled by insertion keeps every entry it was ever given; so does this one, so that
+  // the structure MUMPS factors along a path, and with it the rounding, is that of an insertion
+  // assembly). `coo_values` is written in that order at each evaluation.
+  std::vector<int> kept_jacobian_positions;
+  std::vector<int> local_pattern_outer, local_pattern_inner;   // to recognise the pattern
+  std::vector<std::pair<PetscInt, PetscInt>> earlier_entries;  // sorted, unique
+  std::vector<std::pair<PetscInt, PetscInt>> kept_entries;
+  std::vector<PetscScalar> coo_values;
 
   // One solve's context for the callbacks.
   const StepProblem* step = nullptr;
@@ -121,8 +146,8 @@ struct DistributedSteps::Objects {
   bool stopped = false, timed_out = false;
   int jacobian_evals = 0;
   std::exception_ptr error;
-  Vec full, local_f, element_force;
-  SpMat local_jacobian, element_stiffness;
+  Vec full, displacement, local_f, element_force;
+  SpMat local_jacobian;
 
   void DestroyOperands() {
     VecScatterDestroy(&to_all);
@@ -135,7 +160,7 @@ struct DistributedSteps::Objects {
     model = nullptr;
   }
 
-  // The vectors, the partition and the models for `model` and a system of `n` rows.
+  // The vectors, the partition and the contact-only model for `s` and a system of `n` rows.
   void Make(const StepProblem& s, int n) {
     DestroyOperands();
     Try(SNESReset(snes), "SNESReset");
@@ -147,11 +172,56 @@ struct DistributedSteps::Objects {
     Try(VecGetOwnershipRanges(x, &ranges), "VecGetOwnershipRanges");
     std::vector<int> starts(static_cast<std::size_t>(DistributedSize()) + 1);
     for (std::size_t k = 0; k < starts.size(); ++k) starts[k] = static_cast<int>(ranges[k]);
+    const auto rank = static_cast<std::size_t>(DistributedRank());
 
-    const ElasticBody& body = dynamic_cast<const BodyContactModel&>(*s.model).body();
+    const auto& whole = dynamic_cast<const BodyContactModel&>(*s.model);
+    const ElasticBody& body = whole.body();
     const auto parts = PartitionElements(body, starts);
-    own = body.Restricted(parts[static_cast<std::size_t>(DistributedRank())]);
+    own = body.Restricted(parts[rank]);
     Partitioned() = {&body, parts};
+    contact_only = std::make_shared<OwnPairsModel>(
+        whole, PartitionPairs(body, whole.pairs(), starts)[rank], first, last);
+    element_pattern = ScatterPattern(body.num_dofs(), body.num_dofs(), own->StiffnessEntries());
+    SelectRows(whole, n, rank + 1 == starts.size() - 1);
+    model = s.model;
+    size = n;
+    split_pending = true;
+    earlier_entries.clear();
+    kept_entries.clear();
+    local_pattern_outer.clear();
+  }
+
+  // The rows of the top of the header: this process's displacement rows, its pairs' nodes' dofs
+  // and rows (30) and (31), the scalar rows on the last process; the rows its elements touch.
+  void SelectRows(const BodyContactModel& whole, int n, bool last_process) {
+    const ElasticBody& body = whole.body();
+    const int d = body.num_dofs();
+    const int nc = whole.num_pairs();
+    std::vector<PetscInt> rows;
+    for (PetscInt i = first; i < std::min<PetscInt>(last, d); ++i) rows.push_back(i);
+    for (int p : contact_only->own_pairs()) {
+      const int node = whole.pairs()[static_cast<std::size_t>(p)].node;
+      for (int c = 0; c < body.dim(); ++c) {
+        if (body.dofs().dof(node, c) >= 0) rows.push_back(body.dofs().dof(node, c));
+      }
+      rows.push_back(d + p);
+      rows.push_back(d + nc + p);
+    }
+    if (last_process) {
+      for (int i = d + 2 * nc; i < n; ++i) rows.push_back(i);
+    }
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    evaluates_own_row.assign(static_cast<std::size_t>(last - first), 0);
+    evaluated_remote_rows.clear();
+    for (PetscInt i : rows) {
+      if (i >= first && i < last) {
+        evaluates_own_row[static_cast<std::size_t>(i - first)] = 1;
+      } else {
+        evaluated_remote_rows.push_back(i);
+      }
+    }
+
     std::set<PetscInt> touched;
     for (const auto& cell : own->Cells()) {
       for (int node : cell) {
@@ -160,14 +230,16 @@ struct DistributedSteps::Objects {
         }
       }
     }
-    own_dofs.assign(touched.begin(), touched.end());
-    model = s.model;
-    size = n;
-    if (!vi) SplitWhereAsked(dynamic_cast<const BodyContactModel&>(*s.model));
+    element_local_rows.clear();
+    element_remote_rows.clear();
+    for (PetscInt i : touched)
+      (i >= first && i < last ? element_local_rows : element_remote_rows).push_back(i);
+    remote_rows = evaluated_remote_rows;
+    remote_rows.insert(remote_rows.end(), element_remote_rows.begin(), element_remote_rows.end());
+    remote_values.assign(remote_rows.size(), 0.0);
   }
-
   // A field-split preconditioner (chosen by the options) gets the du rows and the rest (SNESReset
-  // above has cleared the splits of an earlier model). SNESVI solves on reduced rows: not there.
+  // in Make has cleared the splits of an earlier model). SNESVI solves on reduced rows: not there.
   void SplitWhereAsked(const BodyContactModel& model) const {
     KSP ksp = nullptr;
     PC pc = nullptr;
@@ -200,76 +272,110 @@ struct DistributedSteps::Objects {
     Try(VecRestoreArrayWrite(v, &a), "VecRestoreArrayWrite");
   }
 
-  Vec Displacement() const { return step->base.u + full.head(equations->layout.d); }
+  // u = u^k + du of the gathered iterate, into `displacement`.
+  void UpdateDisplacement() { displacement = step->base.u + full.head(equations->layout.d); }
 
-  // F: the local rows on this process's rows, the elements' share of (29) / R added.
+  // F on the rows this process evaluates, the elements' share of (29) / R added: its own rows
+  // written in place, the others sent (ADD_VALUES; the caller assembles `out`).
   bool Residual(::Vec out) {
     const bool finite = equations->residual(full, &local_f);
-    Scatter(local_f, out);
-    own->InternalForce(Displacement(), &element_force);
-    std::vector<PetscScalar> values(own_dofs.size());
-    for (std::size_t k = 0; k < own_dofs.size(); ++k) {
-      values[k] = element_force[own_dofs[k]] / step->scales.force;
+    UpdateDisplacement();
+    own->InternalForce(displacement, &element_force);
+    const double force = step->scales.force;
+    PetscScalar* a = nullptr;
+    Try(VecGetArrayWrite(out, &a), "VecGetArrayWrite");
+    for (PetscInt i = first; i < last; ++i) {
+      a[i - first] = evaluates_own_row[static_cast<std::size_t>(i - first)] ? local_f[i] : 0.0;
     }
-    Try(VecSetValues(out, static_cast<PetscInt>(own_dofs.size()), own_dofs.data(), values.data(),
-                     ADD_VALUES),
+    for (PetscInt i : element_local_rows) a[i - first] += element_force[i] / force;
+    Try(VecRestoreArrayWrite(out, &a), "VecRestoreArrayWrite");
+    const std::size_t evaluated = evaluated_remote_rows.size();
+    for (std::size_t k = 0; k < evaluated; ++k) remote_values[k] = local_f[remote_rows[k]];
+    for (std::size_t k = evaluated; k < remote_rows.size(); ++k) {
+      remote_values[k] = element_force[remote_rows[k]] / force;
+    }
+    Try(VecSetValues(out, static_cast<PetscInt>(remote_rows.size()), remote_rows.data(),
+                     remote_values.data(), ADD_VALUES),
         "VecSetValues");
     return finite;
   }
 
-  // Adds the rows [row_first, row_last) of `m` times `scale` into `target`.
-  static void AddRows(const SpMat& m, PetscInt row_first, PetscInt row_last, double scale,
-                      ::Mat target) {
-    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = m;
-    std::vector<PetscInt> columns;
-    std::vector<PetscScalar> values;
-    for (PetscInt i = row_first; i < row_last; ++i) {
-      const int begin = rows.outerIndexPtr()[i], end = rows.outerIndexPtr()[i + 1];
-      if (begin == end) continue;
-      columns.assign(rows.innerIndexPtr() + begin, rows.innerIndexPtr() + end);
-      values.assign(rows.valuePtr() + begin, rows.valuePtr() + end);
-      for (auto& v : values) v *= scale;
-      Try(MatSetValues(target, 1, &i, end - begin, columns.data(), values.data(), ADD_VALUES),
-          "MatSetValues");
-    }
-  }
-
-  // The local Jacobian's rows of this process and the elements' stiffness / R into `target`.
-  void AddJacobian(::Mat target) {
-    AddRows(local_jacobian, first, last, 1.0, target);
-    AddRows(element_stiffness, 0, element_stiffness.rows(), 1.0 / step->scales.force, target);
-  }
-
   void EvaluateJacobianParts() {
     equations->jacobian(full, &local_jacobian);
-    own->Stiffness(Displacement(), &element_stiffness);
+    UpdateDisplacement();
   }
 
-  // The MPIAIJ matrix preallocated with the entries of every process (MATPREALLOCATOR).
-  void MakeMatrix() {
-    ::Mat counter = nullptr;
-    auto square = [&](::Mat* m, MatType type) {
-      Try(MatCreate(PETSC_COMM_WORLD, m), "MatCreate");
-      Try(MatSetSizes(*m, last - first, last - first, size, size), "MatSetSizes");
-      Try(MatSetType(*m, type), "MatSetType");
-    };
-    square(&counter, MATPREALLOCATOR);
-    Try(MatSetUp(counter), "MatSetUp");
-    AddJacobian(counter);
-    AddDiagonal(counter);
-    Try(MatAssemblyBegin(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    Try(MatAssemblyEnd(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    square(&jacobian, MATMPIAIJ);
-    Try(MatPreallocatorPreallocate(counter, PETSC_TRUE, jacobian), "MatPreallocatorPreallocate");
-    MatDestroy(&counter);
-    Try(MatSetOption(jacobian, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+  bool Evaluates(PetscInt row) const {
+    if (row >= first && row < last) return evaluates_own_row[static_cast<std::size_t>(row - first)];
+    return std::binary_search(evaluated_remote_rows.begin(), evaluated_remote_rows.end(), row);
   }
 
-  // Every diagonal entry stored (SNESVINEWTONSSLS adds to the diagonal).
-  void AddDiagonal(::Mat target) const {
-    for (PetscInt i = first; i < last; ++i) {
-      Try(MatSetValue(target, i, i, 0.0, ADD_VALUES), "MatSetValue");
+  // Whether the local Jacobian's pattern is the one the COO lists were made from.
+  bool SameLocalPattern() const {
+    const SpMat& m = local_jacobian;
+    return !local_pattern_outer.empty() &&
+           static_cast<std::size_t>(m.outerSize()) + 1 == local_pattern_outer.size() &&
+           static_cast<std::size_t>(m.nonZeros()) == local_pattern_inner.size() &&
+           std::equal(local_pattern_outer.begin(), local_pattern_outer.end(), m.outerIndexPtr()) &&
+           std::equal(local_pattern_inner.begin(), local_pattern_inner.end(), m.innerIndexPtr());
+  }
+
+  // The COO lists of the Jacobian (see `coo_values`) for the current local Jacobian, and a new
+  // matrix preallocated with them (collective; a matrix takes one COO preallocation only).
+  void MakePattern() {
+    const SpMat& m = local_jacobian;
+    earlier_entries.insert(earlier_entries.end(), kept_entries.begin(), kept_entries.end());
+    std::sort(earlier_entries.begin(), earlier_entries.end());
+    earlier_entries.erase(std::unique(earlier_entries.begin(), earlier_entries.end()),
+                          earlier_entries.end());
+    local_pattern_outer.assign(m.outerIndexPtr(), m.outerIndexPtr() + m.outerSize() + 1);
+    local_pattern_inner.assign(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
+    kept_jacobian_positions.clear();
+    kept_entries.clear();
+    for (int j = 0; j < m.outerSize(); ++j) {
+      for (int k = m.outerIndexPtr()[j]; k < m.outerIndexPtr()[j + 1]; ++k) {
+        const PetscInt row = m.innerIndexPtr()[k];
+        if (!Evaluates(row)) continue;
+        kept_jacobian_positions.push_back(k);
+        kept_entries.emplace_back(row, j);
+      }
     }
+    std::vector<PetscInt> rows, columns;
+    auto add = [&](PetscInt i, PetscInt j) {
+      rows.push_back(i);
+      columns.push_back(j);
+    };
+    for (const auto& [i, j] : kept_entries) add(i, j);
+    const SpMat& k = element_pattern.pattern();
+    for (int j = 0; j < k.outerSize(); ++j) {
+      for (int e = k.outerIndexPtr()[j]; e < k.outerIndexPtr()[j + 1]; ++e) {
+        add(k.innerIndexPtr()[e], j);
+      }
+    }
+    for (PetscInt i = first; i < last; ++i) add(i, i);
+    for (const auto& [i, j] : earlier_entries) add(i, j);
+    coo_values.assign(rows.size(), 0.0);
+    MatDestroy(&jacobian);
+    Try(MatCreate(PETSC_COMM_WORLD, &jacobian), "MatCreate");
+    Try(MatSetSizes(jacobian, last - first, last - first, size, size), "MatSetSizes");
+    Try(MatSetType(jacobian, MATMPIAIJ), "MatSetType");
+    Try(MatSetPreallocationCOO(jacobian, static_cast<PetscCount>(rows.size()), rows.data(),
+                               columns.data()),
+        "MatSetPreallocationCOO");
+  }
+
+  // The values of the COO lists: the local Jacobian's kept entries and the elements' stiffness
+  // / R (the rest stays zero).
+  void FillValues() {
+    const double* local = local_jacobian.valuePtr();
+    const std::size_t kept = kept_jacobian_positions.size();
+    for (std::size_t k = 0; k < kept; ++k) coo_values[k] = local[kept_jacobian_positions[k]];
+    double* element = coo_values.data() + kept;
+    const auto entries = static_cast<std::size_t>(element_pattern.pattern().nonZeros());
+    std::fill_n(element, entries, 0.0);
+    own->AddStiffness(displacement, 1.0, element_pattern.slots().data(), element);
+    const double scale = 1.0 / step->scales.force;
+    for (std::size_t k = 0; k < entries; ++k) element[k] *= scale;
   }
 };
 
@@ -313,21 +419,15 @@ PetscErrorCode EvaluateJacobian(SNES, ::Vec x, ::Mat, ::Mat, void* context) {
   if (!Agreed(o, [&] {
         o->Gather(x);
         o->EvaluateJacobianParts();
+        if (!o->SameLocalPattern()) {
+          throw std::logic_error("the local Jacobian's pattern changed within a solve");
+        }
+        o->FillValues();
       })) {
     return PETSC_ERR_USER;
   }
-  PetscErrorCode code = MatZeroEntries(o->jacobian);
-  if (code != 0) return code;
-  if (!Agreed(o, [&] {
-        o->AddJacobian(o->jacobian);
-        o->AddDiagonal(o->jacobian);
-      })) {
-    return PETSC_ERR_USER;
-  }
-  code = MatAssemblyBegin(o->jacobian, MAT_FINAL_ASSEMBLY);
-  if (code == 0) code = MatAssemblyEnd(o->jacobian, MAT_FINAL_ASSEMBLY);
   ++o->jacobian_evals;
-  return code;
+  return MatSetValuesCOO(o->jacobian, o->coo_values.data(), INSERT_VALUES);
 }
 
 // History: merit 1/2 fnorm^2 of SNES's norm, residual_inf ||F||_inf, comp_res of the gathered
@@ -434,16 +534,12 @@ DistributedSteps::~DistributedSteps() {
   SNESDestroy(&objects_->snes);
 }
 
-const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step) {
+const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step, int size) {
   std::string why;
   if (!CanDistribute(step, &why)) throw std::invalid_argument(why);
+  PetscErrorCapture capture;
   Objects& o = *objects_;
-  if (o.contact_model_of != step.model) {
-    const auto& model = dynamic_cast<const BodyContactModel&>(*step.model);
-    o.contact_only = std::make_shared<BodyContactModel>(
-        model.body().Restricted({}), model.obstacles(), model.pairs(), model.load_pattern());
-    o.contact_model_of = step.model;
-  }
+  if (o.model != step.model || o.size != size) o.Make(step, size);
   o.contact_only_step = step;
   o.contact_only_step.model = o.contact_only.get();
   return o.contact_only_step;
@@ -455,8 +551,15 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   PetscErrorCapture capture;
   Objects& o = *objects_;
   const int n = equations.layout.size();
+  if (o.model != step.model || o.size != n) {
+    throw std::logic_error("DistributedSteps::Solve: ContactOnlyStep(step, " + std::to_string(n) +
+                           ") was not called first");
+  }
   o.vi = bounds != nullptr;
-  if (o.model != step.model || o.size != n) o.Make(step, n);
+  if (o.split_pending) {
+    if (!o.vi) o.SplitWhereAsked(dynamic_cast<const BodyContactModel&>(*step.model));
+    o.split_pending = false;
+  }
   o.step = &step;
   o.equations = &equations;
   o.controls = &controls;
@@ -467,15 +570,18 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.jacobian_evals = 0;
   o.error = nullptr;
   o.Scatter(*x, o.x);
-  if (o.jacobian == nullptr) {
-    // The pattern of the start's Jacobian, every process's entries counted.
-    o.full = *x;
-    if (!Agreed(&o, [&] {
-          o.EvaluateJacobianParts();
-          o.MakeMatrix();
-        })) {
-      RethrowFailure(&o);
-    }
+  // The local Jacobian's pattern at the start, and a matrix for it when it is new: the pattern
+  // is that of the model, the constraint and the layout, so it holds through the solve.
+  o.full = *x;
+  bool changed = false;
+  if (!Agreed(&o, [&] {
+        o.EvaluateJacobianParts();
+        changed = !o.SameLocalPattern();
+      })) {
+    RethrowFailure(&o);
+  }
+  if ((o.jacobian == nullptr || AnyProcess(changed)) && !Agreed(&o, [&] { o.MakePattern(); })) {
+    RethrowFailure(&o);
   }
   Try(SNESSetFunction(o.snes, o.f, EvaluateResidual, &o), "SNESSetFunction");
   Try(SNESSetJacobian(o.snes, o.jacobian, o.jacobian, EvaluateJacobian, &o), "SNESSetJacobian");

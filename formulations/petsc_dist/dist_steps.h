@@ -5,19 +5,24 @@
 // MPI vector of PETSc's default layout: contiguous row ranges, so that the scalar rows (the rho
 // row (32), the step row (33)) fall to the last process. Each process evaluates
 //   - its own elements' share of (29) / R, the internal force and the stiffness of the body
-//     restricted to its elements (ElasticBody::Restricted, element_partition.h), added into
-//     whatever rows they touch (PETSc sends the entries of other processes' rows), and
-//   - every other term (the load and the contact terms of (29), (30), the complementarity
-//     rows, (32), (33)) on the rows it owns, from the formulation's own serial step equations
-//     on the contact-only model: the same body with no element, the same obstacles and pairs.
-// The latter read the whole iterate, which every evaluation gathers on every process
+//     restricted to its elements (ElasticBody::Restricted, element_partition.h), and
+//   - its own contact pairs (element_partition.h: those at the nodes whose lowest free dof it
+//     owns) from the formulation's own serial step equations on its contact-only model
+//     (own_pairs_model.h: no element, every pair in the layout, only its own evaluated, the load
+//     on its own rows): it keeps the rows (30) and the complementarity rows of its pairs, their
+//     share of the contact term of (29) on their nodes' dofs, its own displacement rows (the
+//     load and that share), and, on the last process, the scalar rows (32), (33);
+// each adds them into whatever rows they are (PETSc sends the entries of other processes' rows).
+// The equations read the whole iterate, which every evaluation gathers on every process
 // (VecScatterCreateToAll): the problem description and the iterate are replicated, the element
-// work and the matrix are not (docs/scale-out.md says what this limits).
+// and pair work and the matrix are not (docs/scale-out.md says what this limits).
 //
-// The Jacobian is MATMPIAIJ, preallocated through MATPREALLOCATOR from the entries of the
-// first evaluation on a model (its pattern then kept; a later entry outside it is allowed, at
-// the cost of an allocation). Solves: PETSc options, under a prefix of each instance's own
-// ("cbd<k>_"), the defaults then the user's string (--petsc-options):
+// The Jacobian is MATMPIAIJ assembled through PETSc's COO interface: the entries (the kept ones
+// of the local Jacobian, the elements' stiffness, the diagonal) are listed once per pattern of
+// the local Jacobian (MatSetPreallocationCOO; every entry of an earlier pattern on the same model
+// is kept), and each evaluation writes their values in that order (MatSetValuesCOO).
+// Solves: PETSc options, under a prefix of each instance's own ("cbd<k>_"), the defaults then
+// the user's string (--petsc-options):
 //   equations  -snes_type newtonls -snes_linesearch_type bt -ksp_type preonly -pc_type lu
 //              -pc_factor_mat_solver_type mumps -snes_max_it <the solver's max_iterations>
 //   SNESVI     -snes_type vinewtonrsls | vinewtonssls, the same direct solve, -snes_atol 1e-10
@@ -68,9 +73,10 @@ class DistributedSteps {
 
   struct Objects;  // the PETSc objects and one solve's context (dist_steps.cc)
 
-  // The step on the contact-only model of step.model (a BodyContactModel; otherwise
-  // std::invalid_argument), for the formulation's local equations; valid until the next call.
-  const StepProblem& ContactOnlyStep(const StepProblem& step);
+  // The step on this process's contact-only model of step.model (a BodyContactModel; otherwise
+  // std::invalid_argument; own_pairs_model.h), for the formulation's local equations of `size`
+  // rows; valid until the next call, which Solve must follow for the same step and size.
+  const StepProblem& ContactOnlyStep(const StepProblem& step, int size);
 
   // Solves from *x (full, identical on every process), leaving the last iterate in *x and
   // filling `result` (status, message, counts, history, details; not the point). With

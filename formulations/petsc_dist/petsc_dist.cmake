@@ -1,8 +1,10 @@
 # The distributed formulations (dist-*): the step systems over MPI with PETSc (petsc-dev, the
 # PETSc of petsc.cmake, included before this file). With PETSc: the distributed system and
-# the formulations; without: the stub, whose DistAvailable() is false. The element partition
-# needs no PETSc and is built either way (its tests run in every build).
-target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/element_partition.cc)
+# the formulations; without: the stub, whose DistAvailable() is false. The element and pair
+# partition and the per-process contact-only model need no PETSc and are built either way (their
+# tests run in every build).
+target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/element_partition.cc
+  ${CMAKE_CURRENT_LIST_DIR}/own_pairs_model.cc)
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
