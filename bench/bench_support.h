@@ -39,6 +39,14 @@ inline std::string CpuModel() {
   return "unknown";
 }
 
+// One BLAS thread unless the environment says otherwise: on this shared 2-core VM OpenBLAS's
+// second thread gains nothing measurable on a quiet machine and, spinning for a core another
+// job holds, multiplies the wall time of the P1 solve by 3-4 under load (docs/findings.md). The
+// context's "blas" line says how many threads ran.
+inline void UseOneBlasThreadUnlessAsked() {
+  if (!BlasThreadsChosenByEnvironment()) SetBlasThreads(1);
+}
+
 inline void AddMachineContext() {
   benchmark::AddCustomContext("cpu_model", CpuModel());
   benchmark::AddCustomContext("hardware_threads",

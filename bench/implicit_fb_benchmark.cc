@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "core/blas_info.h"
 #include "core/timer.h"
 #include "formulations/implicit_fb/implicit_fb.h"
@@ -363,6 +364,7 @@ void RegisterAll() {
 
 int main(int argc, char** argv) {
   cb::RegisterAll();
+  cb::bench::UseOneBlasThreadUnlessAsked();
   benchmark::AddCustomContext("blas", cb::BlasDescription(cb::LoadedBlas()));
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

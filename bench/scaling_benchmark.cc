@@ -265,6 +265,7 @@ int main(int argc, char** argv) {
   using namespace cb;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  bench::UseOneBlasThreadUnlessAsked();
   bench::AddMachineContext();
   benchmark::AddCustomContext("verdict_tolerance", "1e-08");
   for (const auto& info : FormulationRegistry()) {

@@ -37,5 +37,15 @@ TEST(BlasInfo, DescriptionNamesConfigurationThreadsAndFile) {
   EXPECT_EQ(BlasDescription(blas), "none");
 }
 
+// Setting the threads is seen by the next look-up, where the BLAS has the call (OpenBLAS here).
+TEST(BlasInfo, SetThreadsIsWhatTheLibraryThenReports) {
+  const BlasInfo before = LoadedBlas();
+  if (before.vendor != "OpenBLAS") GTEST_SKIP() << "needs OpenBLAS, not " << before.vendor;
+  ASSERT_TRUE(SetBlasThreads(1));
+  EXPECT_EQ(LoadedBlas().threads, 1);
+  ASSERT_TRUE(SetBlasThreads(before.threads));
+  EXPECT_EQ(LoadedBlas().threads, before.threads);
+}
+
 }  // namespace
 }  // namespace cb

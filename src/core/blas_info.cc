@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -57,6 +58,25 @@ std::string BlasDescription(const BlasInfo& blas) {
   if (blas.threads > 0) text += " (" + std::to_string(blas.threads) + " threads)";
   if (!blas.library.empty()) text += " " + blas.library;
   return text;
+}
+
+bool SetBlasThreads(int threads) {
+  if (auto* set = Lookup<void(int)>("openblas_set_num_threads")) {
+    set(threads);
+    return true;
+  }
+  if (auto* set = Lookup<void(int)>("mkl_set_num_threads")) {
+    set(threads);
+    return true;
+  }
+  return false;
+}
+
+bool BlasThreadsChosenByEnvironment() {
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
 }
 
 }  // namespace cb

@@ -29,4 +29,11 @@ BlasInfo LoadedBlas();
 // /usr/lib/.../libblas.so.3", or "unidentified /usr/lib/.../blas/libblas.so.3", or "none".
 std::string BlasDescription(const BlasInfo& blas);
 
+// Sets the threads of an OpenBLAS or MKL in the process; false when the BLAS has no such call.
+bool SetBlasThreads(int threads);
+
+// Whether the environment chooses the BLAS's threads (OPENBLAS_NUM_THREADS, MKL_NUM_THREADS or
+// OMP_NUM_THREADS set).
+bool BlasThreadsChosenByEnvironment();
+
 }  // namespace cb
