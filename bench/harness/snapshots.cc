@@ -1,5 +1,6 @@
 #include "harness/snapshots.h"
 
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -95,6 +96,7 @@ void SnapshotWriter::WriteIndex(const std::string& stem, const State& state) con
     cell_fields.push_back(f.name);
   }
   std::vector<std::string> pieces;
+  pieces.reserve(static_cast<std::size_t>(processes_));
   for (int p = 0; p < processes_; ++p) pieces.push_back(PieceFile(stem, p));
   WriteBodyPvtu(directory_ + "/vtk/" + stem + ".pvtu", cell_fields, pieces);
 }
@@ -112,7 +114,7 @@ void SnapshotWriter::WriteRows(const State& state, int step, const std::string& 
 
 std::string SnapshotWriter::WriteBody(const std::string& stem, const State& state, int step) {
   StopIfInterrupted("saving a state");
-  const std::string file = stem + ".vtu";
+  std::string file = stem + ".vtu";
   WriteBodyVtu(directory_ + "/vtk/" + file, problem_, state, step);
   return file;
 }
