@@ -373,9 +373,8 @@ struct DistributedSteps::Objects {
     double* element = coo_values.data() + kept;
     const auto entries = static_cast<std::size_t>(element_pattern.pattern().nonZeros());
     std::fill_n(element, entries, 0.0);
-    own->AddStiffness(displacement, 1.0, element_pattern.slots().data(), element);
-    const double scale = 1.0 / step->scales.force;
-    for (std::size_t k = 0; k < entries; ++k) element[k] *= scale;
+    own->AddStiffness(displacement, 1.0 / step->scales.force, element_pattern.slots().data(),
+                      element);
   }
 };
 
