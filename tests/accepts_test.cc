@@ -18,8 +18,7 @@
 namespace cb {
 namespace {
 
-constexpr ConstraintKind kAllKinds[] = {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                                        ConstraintKind::kDisplacement, ConstraintKind::kKink};
+constexpr const auto& kAllKinds = fixtures::kAllConstraintKinds;
 
 bool Built(const std::string& name) {
   for (const FormulationInfo& info : FormulationRegistry()) {
@@ -79,7 +78,7 @@ TEST(AcceptsTest, EquationFormulationsAndMpccsTakeEveryStep) {
     auto f = Make(name);
     for (ConstraintKind kind : kAllKinds) {
       SCOPED_TRACE(ToString(kind));
-      EXPECT_EQ(Refusal(*f, StepOf(bar, fixtures::ConstraintOf(kind, bar.model->num_pairs()))), "");
+      EXPECT_EQ(Refusal(*f, StepOf(bar, fixtures::ConstraintOf(kind, *bar.model))), "");
     }
     EXPECT_EQ(Refusal(*f, no_energy.Step()), "");
   }
@@ -105,7 +104,7 @@ TEST_P(EnergyAcceptsTest, OnlyFixedLoadSteps) {
   const Problem bar = MakeProblem("bar-wall");
   for (ConstraintKind kind : kAllKinds) {
     SCOPED_TRACE(ToString(kind));
-    const StepProblem step = StepOf(bar, fixtures::ConstraintOf(kind, bar.model->num_pairs()));
+    const StepProblem step = StepOf(bar, fixtures::ConstraintOf(kind, *bar.model));
     if (kind == ConstraintKind::kFixedLoad) {
       EXPECT_EQ(Refusal(*f, step), "");
     } else {

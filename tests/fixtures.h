@@ -318,10 +318,10 @@ inline const Fixture& FindFixture(const std::string& name) {
   throw std::invalid_argument("no fixture " + name);
 }
 
-// A step constraint of each kind on a model with nc pairs, as the derivative tests use them: an
-// arc length with a lambda weight other than 1, a fixed load, a displacement of dof 0, the kink
-// condition (53) of the last pair.
-inline StepConstraint ConstraintOf(ConstraintKind kind, int nc) {
+// A step constraint of each kind on `model`, as the derivative tests use them: an arc length
+// with a lambda weight other than 1, a fixed load, a displacement of dof 0, the kink condition
+// (53) of the last pair, a hyperplane whose normal has every dof and the load.
+inline StepConstraint ConstraintOf(ConstraintKind kind, const ContactModel& model) {
   switch (kind) {
     case ConstraintKind::kArcLength:
       return StepConstraint::ArcLength(0.1, 0.7);
@@ -330,9 +330,19 @@ inline StepConstraint ConstraintOf(ConstraintKind kind, int nc) {
     case ConstraintKind::kDisplacement:
       return StepConstraint::Displacement(0, 0.01);
     case ConstraintKind::kKink:
-      return StepConstraint::Kink(nc - 1);
+      return StepConstraint::Kink(model.num_pairs() - 1);
+    case ConstraintKind::kHyperplane: {
+      Vec normal(model.num_dofs());
+      for (int j = 0; j < normal.size(); ++j) normal[j] = j % 3 == 0 ? 1.0 : -0.5;
+      return StepConstraint::Hyperplane(normal, 0.3, 0.1);
+    }
   }
   return {};
 }
+
+// Every constraint kind.
+inline constexpr ConstraintKind kAllConstraintKinds[] = {
+    ConstraintKind::kArcLength, ConstraintKind::kFixedLoad, ConstraintKind::kDisplacement,
+    ConstraintKind::kKink, ConstraintKind::kHyperplane};
 
 }  // namespace cb::fixtures

@@ -158,7 +158,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(rng));
   base.lambda = 3.0;
-  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, nc);
+  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, *p.model);
   StepProblem step{p.model.get(), base, constraint, {0.1, 2.0}};
   ImplicitFbSystem system(step, EtaEquation{static_cast<EtaCase>(c.eta), 0.8});
   const StepEquationLayout& l = system.layout();
@@ -197,8 +197,7 @@ TEST_P(ImplicitFbJacobianTest, MatchesFiniteDifferences) {
 std::vector<JacobianCase> AllJacobianCases() {
   std::vector<JacobianCase> cases;
   for (int eta = 1; eta <= 4; ++eta) {
-    for (ConstraintKind k : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                             ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+    for (ConstraintKind k : fixtures::kAllConstraintKinds) {
       cases.push_back({eta, k});
     }
   }
@@ -378,10 +377,9 @@ TEST(ImplicitFbCondensedTest, CurvedArchStepsMatchForEveryConstraint) {
   for (int i = 0; i < d; ++i) base.u[i] = 0.02 * unit(rng);
   for (int q = 0; q < nc; ++q) base.r[q] = q % 2 == 0 ? -std::abs(unit(rng)) : 0.0;
   base.lambda = 3.0;
-  for (ConstraintKind kind : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                              ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+  for (ConstraintKind kind : fixtures::kAllConstraintKinds) {
     SCOPED_TRACE(ToString(kind));
-    StepProblem step{p.model.get(), base, fixtures::ConstraintOf(kind, nc), {0.1, 2.0}};
+    StepProblem step{p.model.get(), base, fixtures::ConstraintOf(kind, *p.model), {0.1, 2.0}};
     StartPoint warm;
     warm.du = Vec::Constant(d, 0.001);
     warm.dlambda = 0.05;

@@ -151,7 +151,7 @@ TEST_P(IpoptMpccNlpTest, DerivativesMatchFiniteDifferencesOnACurvedObstacle) {
   const int nc = p.model->num_pairs();
   std::mt19937 rng(17 + static_cast<int>(c.kind));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, nc);
+  const StepConstraint constraint = fixtures::ConstraintOf(c.kind, *p.model);
   StepProblem step{p.model.get(), RandomBase(p, &rng), constraint, {0.1, 2.0}};
   MpccNlp nlp(step, c.reformulation, 2.5);
   nlp.set_relaxation(0.01);
@@ -179,6 +179,7 @@ INSTANTIATE_TEST_SUITE_P(
                       MpccCase{MpccReformulation::kPenalty, ConstraintKind::kFixedLoad},
                       MpccCase{MpccReformulation::kPenalty, ConstraintKind::kDisplacement},
                       MpccCase{MpccReformulation::kPenalty, ConstraintKind::kKink},
+                      MpccCase{MpccReformulation::kPenalty, ConstraintKind::kHyperplane},
                       MpccCase{MpccReformulation::kScholtes, ConstraintKind::kArcLength},
                       MpccCase{MpccReformulation::kScholtes, ConstraintKind::kKink}),
     [](const ::testing::TestParamInfo<MpccCase>& info) {
@@ -227,10 +228,9 @@ TEST(IpoptTest, AcceptsOnlyWhatEachNlpCanExpress) {
   auto energy = Make("ipopt-energy");
   auto mpcc = Make("ipopt-mpcc");
   const Problem bar = MakeProblem("bar-wall");
-  for (ConstraintKind k : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                           ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+  for (ConstraintKind k : fixtures::kAllConstraintKinds) {
     const StepProblem step{bar.model.get(), ZeroState(*bar.model),
-                           fixtures::ConstraintOf(k, bar.model->num_pairs()), bar.scales};
+                           fixtures::ConstraintOf(k, *bar.model), bar.scales};
     EXPECT_EQ(energy->Accepts(step), k == ConstraintKind::kFixedLoad) << ToString(k);
     EXPECT_TRUE(mpcc->Accepts(step)) << ToString(k);
   }

@@ -40,8 +40,7 @@ State RandomState(const ContactModel& model, std::mt19937* rng) {
   return s;
 }
 
-const ConstraintKind kAllKinds[] = {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                                    ConstraintKind::kDisplacement, ConstraintKind::kKink};
+constexpr const auto& kAllKinds = fixtures::kAllConstraintKinds;
 
 // --- derivatives -----------------------------------------------------------------------------
 
@@ -53,7 +52,7 @@ TEST(NloptDerivativeTest, MeritGradientMatchesFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     fixtures::ConstraintOf(kind, p.model->num_pairs()),
+                     fixtures::ConstraintOf(kind, *p.model),
                      {0.1, 2.0}};
     NloptMeritObjective objective(step, EtaEquation{EtaCase::kCase1, 0.8}, 1.0);
     Vec x(objective.size());
@@ -123,7 +122,7 @@ TEST(NloptDerivativeTest, MpccObjectiveAndEqualitiesMatchFiniteDifferences) {
     SCOPED_TRACE(ToString(kind));
     StepProblem step{p.model.get(),
                      RandomState(*p.model, &rng),
-                     fixtures::ConstraintOf(kind, p.model->num_pairs()),
+                     fixtures::ConstraintOf(kind, *p.model),
                      {0.1, 2.0}};
     NloptMpccProblem problem(step, 2.5);
     const int n = problem.size();
@@ -168,7 +167,7 @@ TEST(NloptTest, IsAvailableAndAcceptsWhatItCanExpress) {
   const Problem bar = MakeProblem("bar-wall");
   for (ConstraintKind kind : kAllKinds) {
     const StepProblem step{bar.model.get(), ZeroState(*bar.model),
-                           fixtures::ConstraintOf(kind, bar.model->num_pairs()), bar.scales};
+                           fixtures::ConstraintOf(kind, *bar.model), bar.scales};
     EXPECT_TRUE(merit->Accepts(step));
     EXPECT_TRUE(mpcc->Accepts(step));
     EXPECT_EQ(energy->Accepts(step), kind == ConstraintKind::kFixedLoad);

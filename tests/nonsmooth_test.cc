@@ -101,7 +101,7 @@ StepProblem RandomStep(const Problem& p, ConstraintKind kind, std::mt19937* rng)
   for (int i = 0; i < d; ++i) base.u[i] = 0.05 * unit(*rng);
   for (int q = 0; q < nc; ++q) base.r[q] = -std::abs(unit(*rng));
   base.lambda = 3.0;
-  return {p.model.get(), base, fixtures::ConstraintOf(kind, nc), {0.1, 2.0}};
+  return {p.model.get(), base, fixtures::ConstraintOf(kind, *p.model), {0.1, 2.0}};
 }
 
 TEST_P(NonsmoothJacobianTest, MatchesFiniteDifferencesAwayFromKinks) {
@@ -133,8 +133,7 @@ TEST_P(NonsmoothJacobianTest, MatchesFiniteDifferencesAwayFromKinks) {
 std::vector<JacobianCase> AllJacobianCases() {
   std::vector<JacobianCase> cases;
   for (auto fn : {ComplementarityFunction::kFischerBurmeister, ComplementarityFunction::kMin}) {
-    for (ConstraintKind k : {ConstraintKind::kArcLength, ConstraintKind::kFixedLoad,
-                             ConstraintKind::kDisplacement, ConstraintKind::kKink}) {
+    for (ConstraintKind k : fixtures::kAllConstraintKinds) {
       cases.push_back({fn, k});
     }
   }

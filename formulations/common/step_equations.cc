@@ -57,6 +57,13 @@ void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, doubl
       break;
     case ConstraintKind::kKink:
       break;  // (53) involves g and r; nothing to fit in the increment
+    case ConstraintKind::kHyperplane: {
+      // The nearest point of the plane: move along its unit normal.
+      const double off = c.arc_length - c.normal.dot(du) - c.normal_lambda * (*dlambda);
+      du += off * c.normal;
+      *dlambda += off * c.normal_lambda;
+      break;
+    }
   }
 }
 
@@ -270,6 +277,10 @@ void StepEquationSystem::BuildPattern() {
       e.emplace_back(row5, l.g() + c.index);
       e.emplace_back(row5, l.r() + c.index);
       break;
+    case ConstraintKind::kHyperplane:  // dense, as the normal's zeros may move between steps
+      for (int j = 0; j < l.d; ++j) e.emplace_back(row5, j);
+      e.emplace_back(row5, l.dlambda());
+      break;
   }
   cache.pattern = ScatterPattern(l.size(), l.size(), e);
   cache.model = &model;
@@ -343,6 +354,10 @@ void StepEquationSystem::FillJacobian(const Vec& x, const Unknowns& unknowns,
     case ConstraintKind::kKink:
       cursor.Add(1.0);
       cursor.Add(-1.0);
+      break;
+    case ConstraintKind::kHyperplane:
+      for (int j = 0; j < l.d; ++j) cursor.Add(c.normal[j] / c.arc_length);
+      cursor.Add(c.normal_lambda / c.arc_length);
       break;
   }
 }

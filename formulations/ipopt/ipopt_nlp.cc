@@ -261,6 +261,7 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
     const StepConstraint& c = step.constraint;
     switch (c.kind) {
       case ConstraintKind::kArcLength:
+      case ConstraintKind::kHyperplane:
         for (int j = 0; j < d_; ++j) {
           jr.push_back(row_step());
           jc.push_back(ix_u() + j);
@@ -409,6 +410,10 @@ bool MpccNlp::JacobianValues(const Vec& x, Vec* values) {
         v[k++] = 1.0;
         break;
       case ConstraintKind::kKink:
+        break;
+      case ConstraintKind::kHyperplane:  // (n . L x_u + n_lambda dlambda) / theta - 1
+        for (int j = 0; j < d_; ++j) v[k++] = length_ * c.normal[j] / c.arc_length;
+        v[k++] = c.normal_lambda / c.arc_length;
         break;
     }
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace cb {
 
@@ -15,6 +16,8 @@ const char* ToString(ConstraintKind kind) {
       return "displacement";
     case ConstraintKind::kKink:
       return "kink";
+    case ConstraintKind::kHyperplane:
+      return "hyperplane";
   }
   return "unknown";
 }
@@ -46,6 +49,16 @@ StepConstraint StepConstraint::Kink(int pair) {
   StepConstraint c;
   c.kind = ConstraintKind::kKink;
   c.index = pair;
+  return c;
+}
+
+StepConstraint StepConstraint::Hyperplane(Vec normal, double normal_lambda, double theta) {
+  StepConstraint c;
+  c.kind = ConstraintKind::kHyperplane;
+  c.arc_length = theta;
+  const double norm = std::sqrt(normal.squaredNorm() + normal_lambda * normal_lambda);
+  c.normal = norm > 0.0 ? Vec(normal / norm) : std::move(normal);
+  c.normal_lambda = norm > 0.0 ? normal_lambda / norm : normal_lambda;
   return c;
 }
 
@@ -89,6 +102,19 @@ void StepProblem::Validate() const {
         throw std::invalid_argument("step.constraint.index is not a contact pair");
       }
       break;
+    case ConstraintKind::kHyperplane:
+      if (!(constraint.arc_length > 0.0) || !std::isfinite(constraint.arc_length)) {
+        throw std::invalid_argument("step.constraint.arc_length must be positive and finite");
+      }
+      if (constraint.normal.size() != d) {
+        throw std::invalid_argument("step.constraint.normal has the wrong size");
+      }
+      if (!constraint.normal.allFinite() || !std::isfinite(constraint.normal_lambda) ||
+          !(constraint.normal.squaredNorm() + constraint.normal_lambda * constraint.normal_lambda >
+            0.0)) {
+        throw std::invalid_argument("step.constraint.normal must be finite and nonzero");
+      }
+      break;
   }
 }
 
@@ -106,6 +132,8 @@ double StepConstraintValue(const StepProblem& step, const Vec& du, double dlambd
       return (step.base.u[c.index] + du[c.index] - c.target) / step.scales.length;
     case ConstraintKind::kKink:
       return g[c.index] / step.scales.length - r[c.index] / step.scales.force;
+    case ConstraintKind::kHyperplane:
+      return (c.normal.dot(du) + c.normal_lambda * dlambda) / c.arc_length - 1.0;
   }
   return 0.0;
 }

@@ -23,7 +23,7 @@ struct ContactScales {
   double force = 1.0;
 };
 
-enum class ConstraintKind { kArcLength, kFixedLoad, kDisplacement, kKink };
+enum class ConstraintKind { kArcLength, kFixedLoad, kDisplacement, kKink, kHyperplane };
 const char* ToString(ConstraintKind kind);
 
 // The row that closes (29)-(32). Each kind's residual c(du, dlambda, g, r), dimensionless:
@@ -31,18 +31,27 @@ const char* ToString(ConstraintKind kind);
 //                H = diag(I, w) (the report takes w = 1);
 //  kFixedLoad:   dlambda - (target - lambda^k);
 //  kDisplacement: (u^k_j + du_j - target) / L for the controlled dof j;
-//  kKink      (53): g_p / L - r_p / R for the pair p whose status changes.
+//  kKink      (53): g_p / L - r_p / R for the pair p whose status changes;
+//  kHyperplane:  (n . du + n_lambda dlambda) / theta - 1: the hyperplane at distance theta from
+//                the base along the unit normal (n, n_lambda), lambda free (Riks; Wagner &
+//                Wriggers 1988). A branch switch takes its first step on the plane orthogonal to
+//                the null vector, which the branch already traced does not cross near the
+//                bifurcation point (docs/method.md section 5).
 struct StepConstraint {
   ConstraintKind kind = ConstraintKind::kArcLength;
   double arc_length = 0.1;     // theta
   double lambda_weight = 1.0;  // w
   double target = 0.0;         // lambda (kFixedLoad) or u_j (kDisplacement), absolute
   int index = -1;              // dof j (kDisplacement) or pair p (kKink)
+  Vec normal;                  // n (kHyperplane), of the dofs' size
+  double normal_lambda = 0.0;  // n_lambda (kHyperplane)
 
   static StepConstraint ArcLength(double theta, double lambda_weight = 1.0);
   static StepConstraint FixedLoad(double lambda);
   static StepConstraint Displacement(int dof, double value);
   static StepConstraint Kink(int pair);
+  // `normal` and `normal_lambda` are scaled together to unit Euclidean norm.
+  static StepConstraint Hyperplane(Vec normal, double normal_lambda, double theta);
 };
 
 struct StepProblem {
