@@ -103,21 +103,12 @@ std::unique_ptr<Reference> TraceReference(const std::string& problem_name) {
 
 // Step k (1-based) of the replay: its problem and start, exactly as ReplayPath builds them.
 StepProblem ReplayStep(const Reference& ref, int k) {
-  const State base = k == 1 ? ZeroState(*ref.problem.model) : ref.path.steps[k - 2].state;
-  const ConstraintKind kind = ref.path.steps[k - 1].kind;
-  const StepConstraint constraint =
-      kind == ConstraintKind::kFixedLoad
-          ? StepConstraint::FixedLoad(base.lambda + ref.path.steps[k - 1].increment.dlambda)
-          : StepConstraint::ArcLength(ref.path.steps[k - 1].arc_length);
-  return StepProblem{ref.problem.model.get(), base, constraint, ref.problem.scales};
+  return ReplayedStep(*ref.problem.model, ref.problem.scales, ZeroState(*ref.problem.model),
+                      ref.path, k, 1.0);
 }
 
 StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any warm_state) {
-  StartPoint start;
-  start.kind = kind;
-  start.r = k == 1 ? Vec::Zero(ref.problem.model->num_pairs()) : ref.path.steps[k - 2].state.r;
-  start.du = ref.path.steps[k - 1].prediction.du;
-  start.dlambda = ref.path.steps[k - 1].prediction.dlambda;
+  StartPoint start = ReplayedStart(ReplayStep(ref, k), ref.path, k, kind);
   start.warm_state = std::move(warm_state);
   return start;
 }
@@ -125,9 +116,7 @@ StartPoint ReplayStart(const Reference& ref, int k, StartKind kind, std::any war
 // Accepted as in replay mode: verified, and not the other root of (33) (pointing against the
 // reference step).
 bool Reversed(const Reference& ref, int k, const StepPoint& p) {
-  const StepPoint& r = ref.path.steps[k - 1].increment;
-  return ref.path.steps[k - 1].kind == ConstraintKind::kArcLength &&
-         p.du.dot(r.du) + p.dlambda * r.dlambda <= 0.0;
+  return ReplayedReversed(ref.path, k, p, 1.0);
 }
 
 void StepBenchmark(benchmark::State& state, const Reference* ref, const std::string& name,

@@ -55,7 +55,8 @@ TEST(StepLegTest, AlongTheBranchTheOtherRootIsReversed) {
   EXPECT_FALSE(leg.Reversed(Answer(heading.du, heading.dlambda), 1.0));
 }
 
-// Off a bifurcation point: at constant load along the null vector, + then -, at each theta.
+// Off a bifurcation point: at constant load along the null vector, + then -, at each theta, each
+// closed by the plane orthogonal to the mode in the same sense at distance theta.
 TEST(StepLegTest, OffABifurcationPointBothSensesOfTheNullVectorAreTried) {
   CriticalPointRecord bifurcation;
   bifurcation.state = {Vec2(1.0, 2.0), Vec::Zero(1), 3.0};
@@ -76,20 +77,15 @@ TEST(StepLegTest, OffABifurcationPointBothSensesOfTheNullVectorAreTried) {
   EXPECT_EQ(plus.dlambda, 0.0);
   EXPECT_EQ(minus.dlambda, 0.0);
   EXPECT_EQ(leg.Predict(2, theta).du, plus.du);
-}
-
-// It must leave along the null vector: an answer with less than half of theta along it went
-// back to the branch already traced.
-TEST(StepLegTest, OffABifurcationPointAnAnswerAcrossTheNullVectorIsReversed) {
-  CriticalPointRecord bifurcation;
-  bifurcation.state = {Vec2(0.0, 0.0), Vec::Zero(1), 0.0};
-  bifurcation.mode = Vec2(1.0, 0.0);
-  const BranchSwitchLeg leg(bifurcation, 1);
-  const double theta = 1.0;
-  EXPECT_FALSE(leg.Reversed(Answer(Vec2(1.0, 0.0), 0.0), theta));
-  EXPECT_FALSE(leg.Reversed(Answer(Vec2(-0.6, 0.8), 0.0), theta));
-  EXPECT_TRUE(leg.Reversed(Answer(Vec2(0.0, 1.0), 0.0), theta));
-  EXPECT_TRUE(leg.Reversed(Answer(Vec2(0.4, 0.0), 0.9), theta));
+  for (int attempt : {0, 1}) {
+    const StepConstraint plane = leg.Constraint(attempt, theta, 1.0);
+    EXPECT_EQ(plane.kind, ConstraintKind::kHyperplane);
+    EXPECT_EQ(plane.arc_length, theta);
+    EXPECT_EQ(plane.normal_lambda, 0.0);
+    // The prediction lies on its own plane.
+    const Increment predicted = leg.Predict(attempt, theta);
+    EXPECT_NEAR(plane.normal.dot(predicted.du) / theta - 1.0, 0.0, 1e-15);
+  }
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
     const int step = summary_.accepted_steps + 1;
     const std::unique_ptr<StepLeg> leg = NextLeg();
     StepAttempt attempt;
-    const Outcome outcome = AttemptWithCutbacks(step, *leg, &attempt);
+    LocatedKinks kinks;
+    const Outcome outcome = AttemptWithCutbacks(step, *leg, &attempt, &kinks);
     if (outcome == Outcome::kStoppedByCaller) {
       return Finish(Status::kStoppedByCaller,
                     "stopped by the caller at step " + std::to_string(step));
@@ -42,7 +43,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
       return Finish(Status::kFailed, StepFailure(step, attempt));
     }
     if (leg->switches_branch()) EnterNewBranch();
-    LocateKinksAndRedirect(*leg, &attempt);
+    RecordKinksAndRedirect(kinks, &attempt);
     const std::vector<CriticalPointRecord> critical = DetectCriticalPoints(*leg, &attempt);
     Accept(attempt, critical);
     if (auto why = stagnation_.Observe(step, attempt.arc_length,
@@ -93,11 +94,17 @@ std::unique_ptr<StepLeg> ArcLengthTracer::NextLeg() const {
                                            summary_.accepted_steps > 0, options_.lambda_weight);
 }
 
-// Reports every rejected attempt; the accepted one is reported by Accept, after its kinks.
+// Reports every rejected attempt; the accepted one is reported by Accept, after its kinks. A
+// verified step off a bifurcation point within which a kink cannot be located is cut back too
+// while cut-backs remain (a shorter step brackets the kink more closely, and a failed switch
+// leaves the path on its branch); the last one is accepted with its kink recorded as not
+// located, and the path then ends as failed, as any step with such a kink does.
 ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const StepLeg& leg,
-                                                              StepAttempt* attempt) {
+                                                              StepAttempt* attempt,
+                                                              LocatedKinks* kinks) {
   const int per_theta = leg.predictions_per_arc_length();
-  for (int index = 0; index < per_theta * (options_.max_cutbacks + 1); ++index) {
+  const int attempts = per_theta * (options_.max_cutbacks + 1);
+  for (int index = 0; index < attempts; ++index) {
     *attempt = Attempt(step, index, leg);
     if (attempt->result.status == Status::kStoppedByCaller) {
       // An interrupted solve is not an accepted step, even when the point it stopped at
@@ -107,7 +114,14 @@ ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const St
       observer_.OnAttempt(*attempt);
       return Outcome::kStoppedByCaller;
     }
-    if (attempt->accepted) return Outcome::kAccepted;
+    if (attempt->accepted) {
+      *kinks = LocateKinks(leg, *attempt);
+      if (kinks->of_step.not_located == 0 || !leg.switches_branch() || index + 1 == attempts) {
+        return Outcome::kAccepted;
+      }
+      attempt->accepted = false;
+      attempt->result.message += "; not accepted: a kink within the step was not located";
+    }
     observer_.OnAttempt(*attempt);
     if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
   }
@@ -117,8 +131,7 @@ ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const St
 StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   const State& base = leg.origin().state;
   const double theta = next_.theta;
-  StepProblem problem{&model_, base, StepConstraint::ArcLength(theta, options_.lambda_weight),
-                      scales_};
+  StepProblem problem{&model_, base, leg.Constraint(index, theta, options_.lambda_weight), scales_};
   Increment prediction = leg.Predict(index, theta);
   StartPoint start;
   start.kind = options_.start;
@@ -130,10 +143,14 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   StepAttempt attempt;
   attempt.step = step;
   attempt.attempt = index;
-  attempt.kind = ConstraintKind::kArcLength;
+  attempt.kind = problem.constraint.kind;
   attempt.arc_length = theta;
   attempt.branch = leg.branch();
   attempt.branch_switch = leg.switches_branch();
+  if (attempt.kind == ConstraintKind::kHyperplane) {
+    attempt.switch_origin = base;
+    attempt.plane_normal = problem.constraint.normal;
+  }
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
   RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
@@ -143,16 +160,16 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   return attempt;
 }
 
-// Every attempt along the null vector returned to the branch already traced (or failed): say
-// so, and go on along that branch from the state accepted past the bifurcation point, at the
-// nominal arc length (and, as the switch, without a backend state to reuse).
+// Every attempt on the planes off the bifurcation point failed the verdict: say so, and go on along
+// that branch from the state accepted past the bifurcation point, at the nominal arc length (and,
+// as the switch, without a backend state to reuse).
 void ArcLengthTracer::AbandonBranchSwitch() {
   CriticalPointRecord failed = std::move(*next_.branch_switch);
   next_.branch_switch.reset();
   failed.switched = false;
-  failed.message = "the branch switch failed: every attempt along the null vector " +
-                   std::string("returned to the branch already traced or failed the verdict; ") +
-                   "the path goes on along it";
+  failed.message =
+      "the branch switch failed: every attempt on the planes orthogonal to the null vector "
+      "failed the verdict; the path goes on along its branch";
   observer_.OnCriticalPoint(failed);
   next_.theta = options_.arc_length;
 }
@@ -163,21 +180,28 @@ void ArcLengthTracer::EnterNewBranch() {
   next_.branch_switch.reset();
 }
 
+ArcLengthTracer::LocatedKinks ArcLengthTracer::LocateKinks(const StepLeg& leg,
+                                                           const StepAttempt& attempt) const {
+  LocatedKinks kinks;
+  if (options_.locate_kinks) {
+    kinks.of_step = kink_locator_.Locate(attempt.step, leg.origin().state, attempt.state, kinks);
+  }
+  return kinks;
+}
+
 // The direction to continue in: the increment just taken, or, past a kink, the increment from
 // the kink (the path's direction on the branch it has turned onto). Without this a step that
 // cut across a corner would be continued back along the new branch.
-void ArcLengthTracer::LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* attempt) {
+void ArcLengthTracer::RecordKinksAndRedirect(const LocatedKinks& kinks, StepAttempt* attempt) {
   at_.heading = {attempt->result.point.du, attempt->result.point.dlambda};
-  if (!options_.locate_kinks) return;
-  const KinksOfStep kinks =
-      kink_locator_.Locate(attempt->step, leg.origin().state, attempt->state, observer_);
-  attempt->kinks = kinks.found;
+  for (const KinkRecord& kink : kinks.records) observer_.OnKink(kink);
+  attempt->kinks = kinks.of_step.found;
   summary_.kinks += attempt->kinks;
-  summary_.kinks_not_located += kinks.not_located;
-  attempt->kink = kinks.nearest;
-  if (!kinks.nearest) return;
-  const Vec du_after = attempt->state.u - kinks.nearest->u;
-  const double dl_after = attempt->state.lambda - kinks.nearest->lambda;
+  summary_.kinks_not_located += kinks.of_step.not_located;
+  attempt->kink = kinks.of_step.nearest;
+  if (!attempt->kink) return;
+  const Vec du_after = attempt->state.u - attempt->kink->u;
+  const double dl_after = attempt->state.lambda - attempt->kink->lambda;
   if (HNorm(du_after, dl_after, options_.lambda_weight) > 1e-3 * attempt->arc_length) {
     at_.heading = {du_after, dl_after};
   }

@@ -53,11 +53,20 @@ class ArcLengthTracer {
 
   bool Start(const State& initial);
   std::unique_ptr<StepLeg> NextLeg() const;
-  Outcome AttemptWithCutbacks(int step, const StepLeg& leg, StepAttempt* attempt);
+  // The kinks located within an accepted attempt, held until it is reported.
+  struct LocatedKinks final : PathObserver {
+    void OnKink(const KinkRecord& kink) override { records.push_back(kink); }
+    KinksOfStep of_step;
+    std::vector<KinkRecord> records;
+  };
+
+  Outcome AttemptWithCutbacks(int step, const StepLeg& leg, StepAttempt* attempt,
+                              LocatedKinks* kinks);
   StepAttempt Attempt(int step, int index, const StepLeg& leg);
   void AbandonBranchSwitch();
   void EnterNewBranch();
-  void LocateKinksAndRedirect(const StepLeg& leg, StepAttempt* attempt);
+  LocatedKinks LocateKinks(const StepLeg& leg, const StepAttempt& attempt) const;
+  void RecordKinksAndRedirect(const LocatedKinks& kinks, StepAttempt* attempt);
   std::vector<CriticalPointRecord> DetectCriticalPoints(const StepLeg& leg, StepAttempt* attempt);
   void Accept(const StepAttempt& attempt, const std::vector<CriticalPointRecord>& critical);
   std::string StepFailure(int step, const StepAttempt& last) const;

@@ -1,5 +1,7 @@
 #include "path/critical_points.h"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -68,25 +70,57 @@ int LoadDirection(const ContactModel& model, const ContactScales& scales, const 
   return schur ? Sign(*schur) : 0;
 }
 
-// The direction to leave a bifurcation point along: the null vector there, made orthogonal to
-// the tangent K^-1 f (a limit mode close by, as on P2, dominates the tangent) and signed so
-// that its largest component is positive (reproducible).
-bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
-                     Vec* mode, std::string* why) {
+// |psi^T f| / |f| for the null vector psi at `at`: zero at a bifurcation point, not at a limit
+// point; 1 when it cannot be computed.
+double LoadCosine(const ContactModel& model, const ContactScales& scales, const State& at) {
   const BorderedStiffness stiffness(model, scales, at);
   Mat basis;
-  Vec tangent;
-  if (!stiffness.NullSpace(1, 4, &basis) ||
-      !stiffness.SolveDisplacement(model.load_pattern(), &tangent)) {
+  const Vec& f = model.load_pattern();
+  if (!stiffness.NullSpace(1, 8, &basis) || !(f.norm() > 0.0)) return 1.0;
+  return std::abs(basis.col(0).dot(f)) / f.norm();
+}
+
+// The bifurcation mode in a near-null space `basis` (d x k): the combination orthogonal to the
+// load pattern f. At a simple bifurcation point phi^T f = 0 (f lies in the range of the bordered
+// stiffness; docs/method.md section 5), while a limit mode has psi^T f != 0. On P2 the limit
+// point B lies a hair from C, so the smallest two eigenvalues are both near zero there and a
+// single inverse iteration returns a mix of psi and phi whose proportions are rounding's:
+// the mode is taken from the two-dimensional near-null space instead, which rounding cannot mix.
+// Empty when every vector of the space is orthogonal to f (no direction is singled out).
+std::optional<Vec> ModeOrthogonalToLoad(const Mat& basis, const Vec& f) {
+  const Vec loads = basis.transpose() * f;  // psi_i^T f
+  if (basis.cols() == 1) return Vec(basis.col(0));
+  if (!(loads.norm() > 1e-10 * f.norm())) return std::nullopt;
+  // Of the space's vectors, those orthogonal to f; with k = 2 it is one direction.
+  const Vec c = Eigen::Vector2d(-loads[1], loads[0]);
+  return Vec(basis * c);
+}
+
+// The direction to leave a bifurcation point along: the bifurcation mode (ModeOrthogonalToLoad),
+// made orthogonal to the chord of the traced path across the point (the plane off the point is
+// then orthogonal to that branch: the branch switch's hyperplane, step_leg.h), and signed so
+// that its largest component is positive (reproducible).
+bool BranchDirection(const ContactModel& model, const ContactScales& scales, const State& at,
+                     const Vec& chord_u, Vec* mode, std::string* why) {
+  const BorderedStiffness stiffness(model, scales, at);
+  Mat basis;
+  if (!stiffness.NullSpace(2, 4, &basis)) {
     *why = "no null vector at the bifurcation point: " + stiffness.message();
     return false;
   }
-  *mode = basis.col(0);
-  const double tt = tangent.squaredNorm();
-  if (tt > 0.0) *mode -= (mode->dot(tangent) / tt) * tangent;
+  std::optional<Vec> phi = ModeOrthogonalToLoad(basis, model.load_pattern());
+  if (!phi) {
+    *why =
+        "the near-null space at the bifurcation point is orthogonal to the load: no mode "
+        "is singled out";
+    return false;
+  }
+  *mode = std::move(*phi);
+  const double cc = chord_u.squaredNorm();
+  if (cc > 0.0) *mode -= (mode->dot(chord_u) / cc) * chord_u;
   const double norm = mode->norm();
   if (!(norm > 0.0)) {
-    *why = "the null vector at the bifurcation point is the path's own tangent";
+    *why = "the null vector at the bifurcation point is the path's own direction";
     return false;
   }
   *mode /= norm;
@@ -141,18 +175,27 @@ bool CriticalPointFinder::ContactStatusChanged(const State& origin,
   return before != after || taken.kinks > 0;
 }
 
-// Each change of the count along the step is located; where the orientation changes across
-// it, it is a bifurcation point (else the limit point, recorded by LimitPoint).
+// Each change of the count along the step is located. Whether the path crossed another branch
+// is told by the orientation at the step's two accepted states, where it is well conditioned
+// (P2's B and C lie a hair apart, and between them the tangent K^-1 f is rounding's): it
+// changes at a bifurcation point and not at a limit point. When it changed, the bifurcation
+// point is the change whose null vector is nearest orthogonal to the load (phi^T f = 0 there,
+// psi^T f != 0 at a limit point), or the change where the count moved by two at once (both
+// within the bracket).
 void CriticalPointFinder::LocateModeChanges(const StepOrigin& origin, const StepAttempt& taken,
                                             bool may_switch,
                                             std::vector<CriticalPointRecord>* critical) const {
   const double w = options_.lambda_weight;
   const Vec& chord_u = taken.result.point.du;
   const double chord_l = taken.result.point.dlambda;
+  const int start = Orientation(model_, scales_, origin.state, chord_u, chord_l, w);
+  const int end = Orientation(model_, scales_, taken.state, chord_u, chord_l, w);
+  const bool crossed_a_branch = start != 0 && end != 0 && start != end;
   double t_from = 0.0;
   int modes = origin.unstable_modes;
   State from = origin.state;
-  bool switch_claimed = false;
+  std::vector<CriticalPointRecord> changes;
+  std::vector<double> load_cosines;
   for (int guard = 0; guard < 8 && modes != taken.stability; ++guard) {
     CriticalPointRecord point;
     point.step = taken.step;
@@ -164,28 +207,30 @@ void CriticalPointFinder::LocateModeChanges(const StepOrigin& origin, const Step
     if (!point.located) {
       point.kind = CriticalPointRecord::Kind::kStabilityChange;
       critical->push_back(point);
-      break;
+      return;
     }
-    const int before = Orientation(model_, scales_, point.state, chord_u, chord_l, w);
-    const int after = Orientation(model_, scales_, past.state, chord_u, chord_l, w);
+    const bool both = std::abs(past.modes - modes) >= 2;
+    load_cosines.push_back(both ? -1.0 : LoadCosine(model_, scales_, point.state));
+    changes.push_back(std::move(point));
     t_from = past.t;
     modes = past.modes;
     from = past.state;
-    if (before == after) continue;  // the limit point
-    std::string why;
-    if (!BranchDirection(model_, scales_, point.state, &point.mode, &why)) {
-      point.message = "located; " + why;
-      critical->push_back(point);
-      continue;
-    }
-    point.message = "located";
-    if (may_switch && !switch_claimed) {
-      point.switched = true;
-      switch_claimed = true;
-      point.message += "; the next step leaves along the null vector";
-    }
-    critical->push_back(point);
   }
+  if (!crossed_a_branch || changes.empty()) return;  // limit points only (LimitPoint)
+  const auto nearest = std::min_element(load_cosines.begin(), load_cosines.end());
+  CriticalPointRecord& point = changes[nearest - load_cosines.begin()];
+  std::string why;
+  if (!BranchDirection(model_, scales_, point.state, chord_u, &point.mode, &why)) {
+    point.message = "located; " + why;
+    critical->push_back(point);
+    return;
+  }
+  point.message = "located";
+  if (may_switch) {
+    point.switched = true;
+    point.message += "; the next step leaves it onto the other branch";
+  }
+  critical->push_back(point);
 }
 
 // Brackets, by bisection of the arc length from accepted state a towards b, the first point

@@ -26,6 +26,8 @@ class KinkLocator {
   KinksOfStep Locate(int step, const State& a, const State& b, PathObserver& observer) const;
 
  private:
+  KinkRecord Solve(int step, int p, const State& from, const State& to, double t) const;
+
   const ContactModel& model_;
   const ContactScales& scales_;
   Formulation& formulation_;

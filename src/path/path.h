@@ -67,7 +67,11 @@ struct StepAttempt {
   // motions that keep the closed contacts closed; 0 = stable); -1 when not computed.
   int stability = -1;
   int branch = 0;              // 0 on the initial branch, +1 after each branch switch
-  bool branch_switch = false;  // this step left a bifurcation point along its null vector
+  bool branch_switch = false;  // this step left a bifurcation point onto another branch
+  // A step off a bifurcation point (kind kHyperplane): the point it left from and the unit
+  // normal of its plane (n_lambda = 0), so that a replay can pose it again.
+  std::optional<State> switch_origin;
+  Vec plane_normal;
 };
 
 // A nonsmooth point of the path (docs/method.md section 6): where pair `pair` has g = r = 0,

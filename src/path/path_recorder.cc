@@ -13,6 +13,8 @@ void PathRecorder::OnAttempt(const StepAttempt& attempt) {
   step.prediction.dlambda = attempt.predicted_dlambda;
   step.arc_length = attempt.arc_length;
   step.kind = attempt.kind;
+  step.switch_origin = attempt.switch_origin;
+  step.plane_normal = attempt.plane_normal;
   steps.push_back(std::move(step));
 }
 

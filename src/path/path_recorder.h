@@ -2,6 +2,7 @@
 // the reference path a replay gives every formulation (replay.h).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "path/path.h"
@@ -15,6 +16,9 @@ struct RecordedStep {
   StepPoint prediction;     // the predicted increment (du, dlambda) its warm start was given
   double arc_length = 0.0;  // theta it was taken with (arc-length steps)
   ConstraintKind kind = ConstraintKind::kArcLength;
+  // kHyperplane: the bifurcation point the step left from and its plane's unit normal.
+  std::optional<State> switch_origin;
+  Vec plane_normal;
 };
 
 class PathRecorder final : public PathObserver {

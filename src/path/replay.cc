@@ -8,6 +8,39 @@
 
 namespace cb {
 
+StepProblem ReplayedStep(const ContactModel& model, const ContactScales& scales,
+                         const State& initial, const PathRecorder& reference, int k, double w) {
+  const RecordedStep& step = reference.steps[k - 1];
+  const State& previous = k == 1 ? initial : reference.steps[k - 2].state;
+  switch (step.kind) {
+    case ConstraintKind::kFixedLoad:
+      return {&model, previous, StepConstraint::FixedLoad(previous.lambda + step.increment.dlambda),
+              scales};
+    case ConstraintKind::kHyperplane:
+      return {&model, *step.switch_origin,
+              StepConstraint::Hyperplane(step.plane_normal, 0.0, step.arc_length), scales};
+    default:
+      return {&model, previous, StepConstraint::ArcLength(step.arc_length, w), scales};
+  }
+}
+
+StartPoint ReplayedStart(const StepProblem& step, const PathRecorder& reference, int k,
+                         StartKind kind) {
+  StartPoint start;
+  start.kind = kind;
+  start.r = step.base.r;
+  start.du = reference.steps[k - 1].prediction.du;
+  start.dlambda = reference.steps[k - 1].prediction.dlambda;
+  return start;
+}
+
+bool ReplayedReversed(const PathRecorder& reference, int k, const StepPoint& answer, double w) {
+  const RecordedStep& step = reference.steps[k - 1];
+  const StepPoint& ref = step.increment;
+  return step.kind != ConstraintKind::kFixedLoad &&
+         HInner(answer.du, answer.dlambda, ref.du, ref.dlambda, w) <= 0.0;
+}
+
 PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, const State& initial,
                        const PathRecorder& reference, Formulation& formulation,
                        const PathOptions& options, PathObserver* observer) {
@@ -18,34 +51,23 @@ PathSummary ReplayPath(const ContactModel& model, const ContactScales& scales, c
   const double w = options.lambda_weight;
   std::any previous_warm_state;
   for (int k = 1; k <= steps; ++k) {
-    const RecordedStep& reference_step = reference.steps[k - 1];
-    const State& base = k == 1 ? initial : reference.steps[k - 2].state;
-    const ConstraintKind kind = reference_step.kind;
-    StepConstraint constraint =
-        kind == ConstraintKind::kFixedLoad
-            ? StepConstraint::FixedLoad(base.lambda + reference_step.increment.dlambda)
-            : StepConstraint::ArcLength(reference_step.arc_length, w);
-    StepProblem problem{&model, base, constraint, scales};
-
-    StartPoint start;
-    start.kind = options.start;
-    start.r = base.r;
-    start.warm_state = previous_warm_state;
-    start.du = reference_step.prediction.du;
-    start.dlambda = reference_step.prediction.dlambda;
+    const StepProblem problem = ReplayedStep(model, scales, initial, reference, k, w);
+    StartPoint start = ReplayedStart(problem, reference, k, options.start);
+    // A step off a bifurcation point starts there, not where the previous step ended.
+    if (problem.constraint.kind != ConstraintKind::kHyperplane) {
+      start.warm_state = previous_warm_state;
+    }
 
     StepAttempt attempt;
     attempt.step = k;
-    attempt.kind = kind;
-    attempt.arc_length = kind == ConstraintKind::kArcLength ? constraint.arc_length : 0.0;
+    attempt.kind = problem.constraint.kind;
+    attempt.arc_length =
+        attempt.kind == ConstraintKind::kFixedLoad ? 0.0 : problem.constraint.arc_length;
     RecordJudgedStep(SolveAndJudge(formulation, problem, start, options), &attempt);
     ++summary.attempts;
-    const StepPoint& point = attempt.result.point;
     // The reference direction decides "forward": the answer must not point against the
     // reference step (the other root of (33)).
-    const StepPoint& ref = reference_step.increment;
-    attempt.reversed = kind == ConstraintKind::kArcLength &&
-                       HInner(point.du, point.dlambda, ref.du, ref.dlambda, w) <= 0.0;
+    attempt.reversed = ReplayedReversed(reference, k, attempt.result.point, w);
     attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
     if (observer != nullptr) observer->OnAttempt(attempt);
     if (attempt.accepted) {

@@ -8,6 +8,17 @@
 
 namespace cb {
 
+// Step k (1-based) of a replay of `reference`: the reference state after step k - 1 (the initial
+// state for k = 1, the bifurcation point for a step off one) closed by the reference step's own
+// constraint (its theta for arc length, its plane off a bifurcation point, or the fixed load).
+StepProblem ReplayedStep(const ContactModel& model, const ContactScales& scales,
+                         const State& initial, const PathRecorder& reference, int k, double w);
+// Its start: the prediction the reference step itself was given and the base's reactions.
+StartPoint ReplayedStart(const StepProblem& step, const PathRecorder& reference, int k,
+                         StartKind kind);
+// Whether `answer` points against the reference step (the other root of (33)).
+bool ReplayedReversed(const PathRecorder& reference, int k, const StepPoint& answer, double w);
+
 // Replays the reference path's steps with `formulation`. Step k (1-based) starts from the
 // reference state after step k - 1 (the initial state for k = 1) with the reference step's own
 // constraint (its theta for arc length, or the fixed load); a warm start gets the prediction

@@ -1,6 +1,5 @@
 #include "path/step_leg.h"
 
-#include <cmath>
 #include <utility>
 
 #include "path/turn_back.h"
@@ -13,6 +12,11 @@ ContinuationLeg::ContinuationLeg(StepOrigin origin, int branch, Increment headin
       heading_(std::move(heading)),
       heading_is_a_step_(heading_is_a_step),
       lambda_weight_(lambda_weight) {}
+
+StepConstraint ContinuationLeg::Constraint(int /*attempt*/, double theta,
+                                           double lambda_weight) const {
+  return StepConstraint::ArcLength(theta, lambda_weight);
+}
 
 Increment ContinuationLeg::Predict(int /*attempt*/, double theta) const {
   const double scale = theta / HNorm(heading_.du, heading_.dlambda, lambda_weight_);
@@ -27,12 +31,17 @@ BranchSwitchLeg::BranchSwitchLeg(const CriticalPointRecord& bifurcation, int new
     : StepLeg(StepOrigin{bifurcation.state, -1, std::nullopt}, new_branch),
       mode_(bifurcation.mode) {}
 
-Increment BranchSwitchLeg::Predict(int attempt, double theta) const {
-  return {mode_ * (attempt % 2 == 0 ? theta : -theta), 0.0};
+StepConstraint BranchSwitchLeg::Constraint(int attempt, double theta,
+                                           double /*lambda_weight*/) const {
+  return StepConstraint::Hyperplane(Sense(attempt) * mode_, 0.0, theta);
 }
 
-bool BranchSwitchLeg::Reversed(const StepPoint& answer, double theta) const {
-  return std::abs(mode_.dot(answer.du)) < 0.5 * theta;
+Increment BranchSwitchLeg::Predict(int attempt, double theta) const {
+  return {mode_ * (Sense(attempt) * theta), 0.0};
+}
+
+bool BranchSwitchLeg::Reversed(const StepPoint& /*answer*/, double /*theta*/) const {
+  return false;
 }
 
 }  // namespace cb

@@ -24,7 +24,9 @@ class StepLeg {
   virtual bool switches_branch() const = 0;
   // Predictions tried at each arc length theta before theta is halved.
   virtual int predictions_per_arc_length() const = 0;
-  // The predicted increment given to attempt `attempt` (0, 1, ...), taken with arc length theta.
+  // The row that closes attempt `attempt` (0, 1, ...) at arc length theta (step_problem.h).
+  virtual StepConstraint Constraint(int attempt, double theta, double lambda_weight) const = 0;
+  // The predicted increment given to attempt `attempt`, taken with arc length theta.
   virtual Increment Predict(int attempt, double theta) const = 0;
   // Whether `answer`, verified or not, goes the wrong way (StepAttempt::reversed).
   virtual bool Reversed(const StepPoint& answer, double theta) const = 0;
@@ -48,6 +50,8 @@ class ContinuationLeg final : public StepLeg {
 
   bool switches_branch() const override { return false; }
   int predictions_per_arc_length() const override { return 1; }
+  // (33): the sphere of radius theta about the origin.
+  StepConstraint Constraint(int attempt, double theta, double lambda_weight) const override;
   // (38), (41): the heading, rescaled to theta.
   Increment Predict(int attempt, double theta) const override;
   // The answer turns back on the path (turn_back.h).
@@ -59,11 +63,14 @@ class ContinuationLeg final : public StepLeg {
   double lambda_weight_;
 };
 
-// Off a located bifurcation point along its null vector, at constant load: the root of (33)
-// nearest to it is on the other branch (its tangent there is the null vector). Both senses of
-// the null vector are tried before theta is cut (a solver may be drawn back to the branch
-// already traced from one side and not from the other). The origin has no unstable-mode count
-// (an eigenvalue is zero there) and no previous step on the new branch.
+// Off a located bifurcation point onto the other branch (docs/method.md section 5): the step
+// is closed by the hyperplane orthogonal to the null vector at distance theta from the point,
+// lambda free (Riks; Wagner & Wriggers 1988), not by the sphere (33). The null vector is
+// orthogonal to the traced branch's tangent there, so that branch meets the plane only far from
+// the point (on a symmetric problem, never: its states have no component along the mode), and
+// the root nearest the prediction is the other branch's crossing. Both senses of the null
+// vector are tried before theta is cut. The origin has no unstable-mode count (an eigenvalue is
+// zero there) and no previous step on the new branch.
 class BranchSwitchLeg final : public StepLeg {
  public:
   // `bifurcation`: its state and null vector `mode`; `new_branch`: the branch it leads onto.
@@ -71,12 +78,19 @@ class BranchSwitchLeg final : public StepLeg {
 
   bool switches_branch() const override { return true; }
   int predictions_per_arc_length() const override { return 2; }
-  // theta times the null vector, in the sense + for even attempts and - for odd ones.
+  // The hyperplane mode . du = theta, the mode in the sense + for even attempts, - for odd.
+  StepConstraint Constraint(int attempt, double theta, double lambda_weight) const override;
+  // theta times the null vector in the attempt's sense, at constant load.
   Increment Predict(int attempt, double theta) const override;
-  // The answer must leave along the null vector, not return to the branch already traced.
+  // Never: the plane has no wrong side (each sense is a plane of its own), and it does not meet
+  // the branch already traced near the point. How far the answer is from the point is no test:
+  // on P2 the new branch falls in load as 40 times the square of the mode's amplitude, so its
+  // crossing of the plane at theta = 0.1 is 5 theta away.
   bool Reversed(const StepPoint& answer, double theta) const override;
 
  private:
+  double Sense(int attempt) const { return attempt % 2 == 0 ? 1.0 : -1.0; }
+
   Vec mode_;
 };
 
