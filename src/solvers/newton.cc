@@ -1,12 +1,11 @@
 #include "solvers/newton.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
-#include <vector>
 
+#include "solvers/nonmonotone_reference.h"
 #include "solvers/solver_common.h"
 
 namespace cb {
@@ -39,13 +38,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
   }
   bool jacobian_at_x = one_pass != nullptr;
 
-  // The merits of the last nonmonotone_window iterates, and whether the search has stalled: after
-  // kStallIterations iterations in a row whose full step was rejected, the Armijo test is
-  // measured from the largest of them for the rest of the solve (SolverOptions).
-  constexpr int kStallIterations = 2;
-  std::vector<double> recent(1, merit);
-  int damped_in_a_row = 0;
-  bool nonmonotone = false;
+  NonmonotoneReference reference(options_.nonmonotone_window, merit);
   for (int k = 1; k <= options_.max_iterations; ++k) {
     const auto at = [k] { return internal::At(k); };
     const bool jacobian_finite = jacobian_at_x
@@ -71,8 +64,8 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     double trial_merit = 0.0;
     const internal::LineSearchResult search = internal::BacktrackingLineSearch(
         system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit,
-        nonmonotone ? *std::max_element(recent.begin(), recent.end()) : merit, dx_, &x_trial_,
-        &f_trial_, &trial_merit, &summary, damped_in_a_row == 0 ? one_pass : nullptr);
+        reference.Reference(merit), dx_, &x_trial_, &f_trial_, &trial_merit, &summary,
+        reference.last_step_full() ? one_pass : nullptr);
     if (!search.accepted) {
       FinishStuck(
           system, *x, Status::kFailed,
@@ -86,10 +79,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
     f_.swap(f_trial_);
     jacobian_at_x = search.jacobian_at_trial;
     merit = trial_merit;
-    recent.push_back(merit);
-    if (static_cast<int>(recent.size()) > options_.nonmonotone_window) recent.erase(recent.begin());
-    damped_in_a_row = search.step < 1.0 ? damped_in_a_row + 1 : 0;
-    nonmonotone = nonmonotone || damped_in_a_row >= kStallIterations;
+    reference.Accept(merit, search.step);
     if (internal::EndIteration(k, merit, f_, search.step, x, options_.residual_tol, callback,
                                &summary)) {
       return summary;

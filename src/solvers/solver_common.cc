@@ -69,6 +69,14 @@ void CheckInitialPoint(const EquationSystem& system, const Vec* x, const std::st
   }
 }
 
+double NextBacktrackFactor(const SolverOptions& options, double merit, double slope, double a,
+                           double trial_merit) {
+  // A failed sufficient-decrease test implies c > 0 for either test; the guard covers rounding.
+  const double c = (trial_merit - merit - slope * a) / (a * a);
+  const double t = c > 0.0 ? -slope / (2.0 * c) : options.backtrack_max * a;
+  return std::clamp(t, options.backtrack_min * a, options.backtrack_max * a);
+}
+
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
                                         double reference_merit, const Vec& dx, Vec* x_trial,
@@ -102,11 +110,7 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
         *merit_trial = m;
         return result;
       }
-      // Minimiser of q(t) = m(0) + slope t + c t^2 through m(a). A failed sufficient-decrease
-      // test implies c > 0 for either test; the guard covers rounding.
-      const double c = (m - merit - slope * a) / (a * a);
-      const double t = c > 0.0 ? -slope / (2.0 * c) : options.backtrack_max * a;
-      a = std::clamp(t, options.backtrack_min * a, options.backtrack_max * a);
+      a = NextBacktrackFactor(options, merit, slope, a, m);
     } else {
       a *= std::min(0.5, options.backtrack_max);
     }

@@ -75,6 +75,12 @@ struct LineSearchResult {
 // *f_trial, *merit_trial hold the accepted point. With jacobian_trial, the full step a = 1 is
 // evaluated with its Jacobian in one pass (EvaluateResidualAndJacobian), for Newton's next
 // iteration if that step is accepted (result.jacobian_at_trial).
+// The next factor of a backtracking search whose trial at factor a had merit `trial_merit`:
+// the minimiser of q(t) = m(0) + slope t + c t^2 through m(a), clipped to [backtrack_min,
+// backtrack_max] * a (BacktrackingLineSearch; shared with the distributed Newton's search).
+double NextBacktrackFactor(const SolverOptions& options, double merit, double slope, double a,
+                           double trial_merit);
+
 LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOptions& options,
                                         DecreaseTest test, const Vec& x, double merit,
                                         double reference_merit, const Vec& dx, Vec* x_trial,
