@@ -2,18 +2,15 @@
 
 namespace cb {
 
-namespace {
-
-SolverOptions Monotone(SolverOptions options) {
-  options.nonmonotone_window = 1;
-  return options;
+SolverOptions SolverOptionsFor(StartKind kind, const SolverOptions& options) {
+  SolverOptions chosen = options;
+  if (kind != StartKind::kCold) chosen.nonmonotone_window = 1;
+  return chosen;
 }
 
-}  // namespace
-
 StartSolvers::StartSolvers(const std::string& solver, const SolverOptions& options)
-    : cold_(MakeEquationSolver(solver, options)),
-      warm_(MakeEquationSolver(solver, Monotone(options))) {}
+    : cold_(MakeEquationSolver(solver, SolverOptionsFor(StartKind::kCold, options))),
+      warm_(MakeEquationSolver(solver, SolverOptionsFor(StartKind::kWarm, options))) {}
 
 EquationSolver& StartSolvers::For(StartKind kind) const {
   return kind == StartKind::kCold ? *cold_ : *warm_;

@@ -14,6 +14,9 @@ namespace cb {
 // start is near its answer, so it keeps the monotone test (window 1): its 2-3 iterations per
 // step are unchanged, and so is every warm path that depends on its last digits, such as P2's
 // branch switch at C (docs/findings.md).
+// The options of the solver for a start of `kind` (see StartSolvers), from the formulation's.
+SolverOptions SolverOptionsFor(StartKind kind, const SolverOptions& options);
+
 class StartSolvers {
  public:
   StartSolvers(const std::string& solver, const SolverOptions& options);

@@ -6,15 +6,17 @@
 //   dist-active-set     NonsmoothSystem (min), the same start, SNES newtonls;
 //   dist-petsc-rsls     the MCP of petsc_mcp.h, start MakeMcpStart, SNESVINEWTONRSLS;
 //   dist-petsc-ssls     the same, SNESVINEWTONSSLS.
-// What the serial ones add around their Newton is not repeated: nonsmooth-fb's restart from the
-// cold start, the serial solvers' choice per start kind (StartSolvers), implicit-fb's
-// alternative solvers (dogleg, quasi-Newton): PETSc's own are chosen with -snes_type.
+// The equations take the serial Newton's line search with the serial solvers' settings for the
+// start (SolverOptionsFor; dist_line_search.h). What the serial ones add around their Newton is
+// not repeated: nonsmooth-fb's restart from the cold start, implicit-fb's alternative solvers
+// (dogleg, quasi-Newton): PETSc's own are chosen with -snes_type.
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "formulations/common/start_solvers.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/nonsmooth/nonsmooth.h"
 #include "formulations/petsc/petsc_adapter.h"
@@ -59,7 +61,7 @@ std::string DefaultOptions(DistKind kind, const SolverOptions& solver, const std
            (kind == DistKind::kRsls ? "vinewtonrsls" : "vinewtonssls") + LinearOptions(linear) +
            " -snes_atol 1e-10 -snes_rtol 0 -snes_max_it 200";
   }
-  return "-snes_type newtonls -snes_linesearch_type bt" + LinearOptions(linear) + " -snes_max_it " +
+  return "-snes_type newtonls" + LinearOptions(linear) + " -snes_max_it " +
          std::to_string(solver.max_iterations);
 }
 
@@ -132,14 +134,15 @@ class DistFormulation final : public Formulation {
     const bool has_rho = kind_ == DistKind::kImplicitFb;
     const StepProblem& local = steps_.ContactOnlyStep(
         step, StepEquationLayout{step.num_dofs(), step.num_pairs(), has_rho}.size());
-    const double tol = options_.solver_options.residual_tol;
+    // The serial solver's settings for this start (its line search's window; StartSolvers).
+    const SolverOptions solver = SolverOptionsFor(start.kind, options_.solver_options);
     Vec x;
     switch (kind_) {
       case DistKind::kImplicitFb: {
         const ImplicitFbStart initial = MakeImplicitFbStart(step, start, options_);
         ImplicitFbSystem system(local, EtaEquation{options_.eta, initial.gamma}, cache_);
         x = initial.x;
-        steps_.Solve(step, Equations(system), nullptr, tol, controls, &x, result);
+        steps_.Solve(step, Equations(system), nullptr, solver, controls, &x, result);
         result->details["gamma"] = std::to_string(initial.gamma);
         result->details["rho"] = std::to_string(x[system.layout().rho()]);
         break;
@@ -152,7 +155,7 @@ class DistFormulation final : public Formulation {
                                    : ComplementarityFunction::kFischerBurmeister,
                                cache_);
         x = MakeStepEquationStart(step, start, system.layout().size());
-        steps_.Solve(step, Equations(system), nullptr, tol, controls, &x, result);
+        steps_.Solve(step, Equations(system), nullptr, solver, controls, &x, result);
         break;
       }
       case DistKind::kRsls:
@@ -165,7 +168,7 @@ class DistFormulation final : public Formulation {
             [&](const Vec& y, Vec* f) { return McpFunction(system, y, f); },
             [&](const Vec& y, SpMat* jacobian) { mcp.Fill(system, y, jacobian); }, system.layout()};
         const DistBounds dist_bounds{bounds.lower, bounds.upper};
-        steps_.Solve(step, equations, &dist_bounds, tol, controls, &x, result);
+        steps_.Solve(step, equations, &dist_bounds, solver, controls, &x, result);
         break;
       }
     }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
+#include "formulations/petsc_dist/dist_line_search.h"
 #include "formulations/petsc_dist/element_partition.h"
 #include "formulations/petsc_dist/field_split.h"
 #include "formulations/petsc_dist/own_pairs_model.h"
@@ -143,6 +145,8 @@ struct DistributedSteps::Objects {
   Stopwatch clock;
   double residual_tol = 0.0;
   bool vi = false;
+  // The serial Newton's line search, when it is SNES's (no -snes_linesearch_type given).
+  std::unique_ptr<DistLineSearch> line_search;
   bool stopped = false, timed_out = false;
   int jacobian_evals = 0;
   std::exception_ptr error;
@@ -523,6 +527,15 @@ DistributedSteps::DistributedSteps(const std::string& defaults, const std::strin
     throw std::invalid_argument("petsc_options '" + user_options +
                                 "': PETSc's SNESSetFromOptions refuses them");
   }
+  SNESType type = nullptr;
+  PetscBool named = PETSC_FALSE;
+  Try(SNESGetType(o->snes, &type), "SNESGetType");
+  Try(PetscOptionsHasName(nullptr, prefix.c_str(), "-snes_linesearch_type", &named),
+      "PetscOptionsHasName");
+  if (std::string(type) == SNESNEWTONLS && !named) {
+    o->line_search = std::make_unique<DistLineSearch>();
+    Try(o->line_search->Install(o->snes), "SNESLineSearchShellSetUserFunc");
+  }
   Try(SNESMonitorSet(o->snes, RecordIteration, o, nullptr), "SNESMonitorSet");
   Try(SNESSetConvergenceTest(o->snes, ConvergenceTest, o, nullptr), "SNESSetConvergenceTest");
 }
@@ -545,7 +558,7 @@ const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step, in
 }
 
 void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& equations,
-                             const DistBounds* bounds, double residual_tol,
+                             const DistBounds* bounds, const SolverOptions& solver,
                              const SolveControls& controls, Vec* x, StepResult* result) {
   PetscErrorCapture capture;
   Objects& o = *objects_;
@@ -564,7 +577,8 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.controls = &controls;
   o.result = result;
   o.clock = Stopwatch();
-  o.residual_tol = residual_tol;
+  o.residual_tol = solver.residual_tol;
+  if (o.line_search) o.line_search->Start(solver);
   o.stopped = o.timed_out = false;
   o.jacobian_evals = 0;
   o.error = nullptr;

@@ -23,8 +23,9 @@
 // is kept), and each evaluation writes their values in that order (MatSetValuesCOO).
 // Solves: PETSc options, under a prefix of each instance's own ("cbd<k>_"), the defaults then
 // the user's string (--petsc-options):
-//   equations  -snes_type newtonls -snes_linesearch_type bt -ksp_type preonly -pc_type lu
-//              -pc_factor_mat_solver_type mumps -snes_max_it <the solver's max_iterations>
+//   equations  -snes_type newtonls -ksp_type preonly -pc_type lu
+//              -pc_factor_mat_solver_type mumps -snes_max_it <the solver's max_iterations>,
+//              and the serial Newton's line search (dist_line_search.h)
 //   SNESVI     -snes_type vinewtonrsls | vinewtonssls, the same direct solve, -snes_atol 1e-10
 //              -snes_rtol 0 -snes_max_it 200 (the defaults of petsc_adapter.h, with MUMPS,
 //              the parallel factorisation Debian's PETSc has).
@@ -80,9 +81,12 @@ class DistributedSteps {
 
   // Solves from *x (full, identical on every process), leaving the last iterate in *x and
   // filling `result` (status, message, counts, history, details; not the point). With
-  // `bounds`, SNESVI; otherwise converged when ||F||_inf <= residual_tol.
+  // `bounds`, SNESVI; otherwise converged when ||F||_inf <= solver.residual_tol, with the
+  // serial Newton's line search and `solver`'s settings of it (dist_line_search.h) unless the
+  // options name another -snes_linesearch_type.
   void Solve(const StepProblem& step, const LocalStepEquations& equations, const DistBounds* bounds,
-             double residual_tol, const SolveControls& controls, Vec* x, StepResult* result);
+             const SolverOptions& solver, const SolveControls& controls, Vec* x,
+             StepResult* result);
 
  private:
   std::string options_;

@@ -7,6 +7,7 @@ target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/eleme
   ${CMAKE_CURRENT_LIST_DIR}/own_pairs_model.cc)
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
+    ${CMAKE_CURRENT_LIST_DIR}/dist_line_search.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc
     ${CMAKE_CURRENT_LIST_DIR}/field_split.cc
