@@ -10,14 +10,25 @@
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
 #   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
 # A run that fails keeps its records and the job goes on; the reports say what failed.
-# Environment: SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts
-# (and their old files) alone.
+# Usage: scripts/run_suite.sh
+# Environment:
+#   BUILD_DIR=DIR    the build to set up and run (default build/)
+#   RESULTS_DIR=DIR  where the records, figures and reports go (default results/, the committed
+#                    run: give another directory to keep it as it is)
+#   SKIP_SETUP=1     neither install nor build: run the contactbench already built in BUILD_DIR
+#   SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their
+#                    old files) alone
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
 out="${RESULTS_DIR:-$here/results}"
-"$here/scripts/setup.sh" "$build" || exit 1
+if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit 1; fi
 cb="$build/bin/contactbench"
+if [[ ! -x $cb ]]; then
+  echo "run_suite: no $cb (SKIP_SETUP=1 needs a build in BUILD_DIR)" >&2
+  exit 1
+fi
+mkdir -p "$out"
 
 status=0
 run() {  # run OUT_SUBDIR ARGS...
