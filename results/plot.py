@@ -7,7 +7,9 @@ writes RESULTS_DIR/REPORT.md (the report's three examples, plotlib/reproduction.
 readings study of plotlib/readings.py and the 3-D solids of plotlib/solid3d.py when the records
 of scripts/run_readings.sh and scripts/run_solid3d.sh exist) and
 RESULTS_DIR/COMPARISON.md (the formulation comparison and the benchmarks,
-plotlib/comparison.py), with their PNG figures under RESULTS_DIR/figures/. Needs Debian's
+plotlib/comparison.py), with their PNG figures under RESULTS_DIR/figures/. Records of the quick
+mode (`scripts/run_suite.sh --quick`) come with its marker, RESULTS_DIR/QUICK_MODE.txt: both
+reports then open with a line saying so (plotlib/quick.py). Needs Debian's
 python3-matplotlib, python3-pandas and python3-numpy (hence /usr/bin/python3).
 """
 import os

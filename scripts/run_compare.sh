@@ -34,10 +34,11 @@
 # Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
 # depends on the reconstruction choices.
 #
-# Run time on the 2-core machine of results/README.md, measured (with run_bench.sh busy on the other
-# core for the first 22 minutes): 28.5 minutes
-# (arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s, arch-curved-prefix 818 s, of
-# which ~550 s nlopt-mpcc and ~250 s nlopt-merit, block 6 s).
+# Run time on the 2-core machine of results/README.md, which gives each set's: 62.5 minutes for the
+# committed sets, on a machine loaded by other jobs (load 4-8). Before the peers and the
+# step-size set joined, the five other sets took 28.5 minutes (with run_bench.sh busy on the
+# other core for the first 22): arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s,
+# arch-curved-prefix 818 s (~550 s nlopt-mpcc, ~250 s nlopt-merit), block 6 s.
 # Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),

@@ -10,14 +10,79 @@
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
 #   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
 # A run that fails keeps its records and the job goes on; the reports say what failed.
-# Environment: SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts
-# (and their old files) alone.
+# Usage: scripts/run_suite.sh [--quick]
+# Environment:
+#   BUILD_DIR=DIR    the build to set up and run (default build/)
+#   RESULTS_DIR=DIR  where the records, figures and reports go (default results/, the committed
+#                    run: give another directory to keep it as it is; with --quick,
+#                    results-quick/)
+#   SKIP_SETUP=1     neither install nor build: run the contactbench already built in BUILD_DIR
+#   SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their
+#                    old files) alone
+#   QUICK=1          the same as --quick
+#
+# --quick, the quick mode: a first look and a check of the pipeline in a minute or two after
+# the build (results/README.md has the time measured), not results to quote. The report's
+# examples, the readings and the 3-D solids run whole (seconds each), so REPORT.md is the full
+# one; the comparison runs only the sets arch-flat and arch-curved, on the first FULL_STEPS
+# (default 100) steps of each path, and block; the prefix and step-size sets and the benchmarks
+# are left out (SKIP_BENCH=0 adds the benchmarks, whole, at their full cost).
+# It writes RESULTS_DIR/QUICK_MODE.txt, which says what was shortened, and REPORT.md and
+# COMPARISON.md open with a line saying they are the quick mode's (results/plotlib/quick.py).
+# It refuses to write into results/, the committed run.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+quick="${QUICK:-0}"
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    *) echo "run_suite: unknown argument '$arg' (usage: scripts/run_suite.sh [--quick])" >&2
+       exit 2 ;;
+  esac
+done
 build="${BUILD_DIR:-$here/build}"
-out="${RESULTS_DIR:-$here/results}"
-"$here/scripts/setup.sh" "$build" || exit 1
+skip_bench="${SKIP_BENCH:-0}"
+if [[ $quick == 1 ]]; then
+  out="${RESULTS_DIR:-$here/results-quick}"
+  skip_bench="${SKIP_BENCH:-1}"
+  quick_steps="${FULL_STEPS:-100}"
+  if [[ "$(realpath -m "$out")" == "$(realpath -m "$here/results")" ]]; then
+    echo "run_suite: --quick would mix shortened records into results/, the committed run;" \
+         "give another RESULTS_DIR (default results-quick/)" >&2
+    exit 2
+  fi
+else
+  out="${RESULTS_DIR:-$here/results}"
+fi
+if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit 1; fi
 cb="$build/bin/contactbench"
+if [[ ! -x $cb ]]; then
+  echo "run_suite: no $cb (SKIP_SETUP=1 needs a build in BUILD_DIR)" >&2
+  exit 1
+fi
+mkdir -p "$out"
+
+# The quick mode's marker, with what it shortened: results/plot.py reads it. A full run into the
+# same directory removes it.
+marker="$out/QUICK_MODE.txt"
+rm -f "$marker"
+if [[ $quick == 1 ]]; then
+  {
+    whole="the report's examples"
+    [[ "${SKIP_READINGS:-0}" != 1 ]] && whole+=", the readings"
+    [[ "${SKIP_SOLID3D:-0}" != 1 ]] && whole+=", the 3-D solids"
+    echo "Run whole: $whole."
+    [[ "${SKIP_COMPARE:-0}" != 1 ]] &&
+      echo "The comparison sets arch-flat and arch-curved on the first $quick_steps steps of" \
+           "each path, block whole; no prefix or step-size sets."
+    [[ $skip_bench != 1 ]] && echo "The benchmarks whole."
+    [[ $skip_bench == 1 ]] && echo "No benchmarks."
+    for name in READINGS SOLID3D COMPARE; do
+      skip="SKIP_$name"
+      [[ "${!skip:-0}" == 1 ]] && echo "$skip=1: that part's records, if any, are an earlier run's."
+    done
+  } >"$marker"
+fi
 
 status=0
 run() {  # run OUT_SUBDIR ARGS...
@@ -50,18 +115,18 @@ for solver in newton quasi-newton; do
       --save-every 200
 done
 
-if [[ "${SKIP_READINGS:-0}" != 1 ]]; then
-  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_readings.sh" || status=3
-fi
-if [[ "${SKIP_SOLID3D:-0}" != 1 ]]; then
-  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_solid3d.sh" || status=3
-fi
+# The parts' own scripts, with the set-up done; whole (not their own QUICK=1 forms).
+part() { SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" QUICK=0 "$@" || status=3; }
+if [[ "${SKIP_READINGS:-0}" != 1 ]]; then part "$here/scripts/run_readings.sh"; fi
+if [[ "${SKIP_SOLID3D:-0}" != 1 ]]; then part "$here/scripts/run_solid3d.sh"; fi
 if [[ "${SKIP_COMPARE:-0}" != 1 ]]; then
-  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_compare.sh" || status=3
+  if [[ $quick == 1 ]]; then
+    FULL_STEPS="$quick_steps" part "$here/scripts/run_compare.sh" arch-flat arch-curved block
+  else
+    part "$here/scripts/run_compare.sh"
+  fi
 fi
-if [[ "${SKIP_BENCH:-0}" != 1 ]]; then
-  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$out" "$here/scripts/run_bench.sh" || status=3
-fi
+if [[ $skip_bench != 1 ]]; then part "$here/scripts/run_bench.sh"; fi
 
 /usr/bin/python3 "$here/results/plot.py" "$out" || status=3
 exit $status

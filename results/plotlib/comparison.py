@@ -35,7 +35,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.patches import Patch  # noqa: E402
 
-from plotlib import histograms  # noqa: E402
+from plotlib import histograms, quick  # noqa: E402
 
 SHIFT = 10.0
 # Times enter the shifted means in milliseconds, so the shift is 10 ms. The shifted mean lies
@@ -802,6 +802,7 @@ def write(results_dir):
            "(`scripts/run_bench.sh`). Protocol: `docs/comparison.md`; replay mode: "
            "every formulation x start solves the same steps of the reference path "
            "(implicit-fb), each from the reference's previous accepted state.", ""]
+    out[:0] = quick.opening(results_dir)  # a quick run's report says so first
     out += machine_lines(results_dir)
     out += ["Absolute times are machine dependent; the ratios measured in one run are the "
             "figures to quote. For the NLopt formulations `iterations` counts objective "

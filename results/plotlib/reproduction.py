@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
 
-from plotlib import histograms, obstacles  # noqa: E402
+from plotlib import histograms, obstacles, quick  # noqa: E402
 
 FIGURES = os.path.join("figures", "reproduction")
 ETA_LABEL = {1: "case 1 (proposed)", 2: "case 2", 3: "case 3 (degenerate)",
@@ -556,6 +556,7 @@ def write(results_dir, sections=()):
              "system (29)-(33) with rho an unknown), eta case 1 unless stated. Every step counted "
              "here is verified by the verdict (docs/method.md section 7), tolerance 1e-8.",
              ""]
+    lines[:0] = quick.opening(results_dir)  # a quick run's report says so first
     p1(results_dir, lines)
     p2(results_dir, lines)
     p3(results_dir, lines)
