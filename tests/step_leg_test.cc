@@ -32,7 +32,7 @@ StepOrigin Origin() {
 TEST(StepLegTest, AlongTheBranchThePredictionIsTheHeadingScaledToTheArcLength) {
   const double w = 2.0;
   const Increment heading{Vec2(3.0, 4.0), 1.0};
-  const ContinuationLeg leg(Origin(), 2, heading, true, w);
+  const ContinuationLeg leg(Origin(), 2, heading, {{-heading.du, -heading.dlambda}}, w);
   EXPECT_FALSE(leg.switches_branch());
   EXPECT_EQ(leg.branch(), 2);
   EXPECT_EQ(leg.predictions_per_arc_length(), 1);
@@ -50,7 +50,7 @@ TEST(StepLegTest, AlongTheBranchThePredictionIsTheHeadingScaledToTheArcLength) {
 
 TEST(StepLegTest, AlongTheBranchTheOtherRootIsReversed) {
   const Increment heading{Vec2(0.6, 0.0), 0.8};
-  const ContinuationLeg leg(Origin(), 0, heading, true, 1.0);
+  const ContinuationLeg leg(Origin(), 0, heading, {{-heading.du, -heading.dlambda}}, 1.0);
   EXPECT_TRUE(leg.Reversed(Answer(-heading.du, -heading.dlambda), 1.0));
   EXPECT_FALSE(leg.Reversed(Answer(heading.du, heading.dlambda), 1.0));
 }

@@ -89,9 +89,42 @@ std::unique_ptr<StepLeg> ArcLengthTracer::NextLeg() const {
   if (next_.branch_switch) {
     return std::make_unique<BranchSwitchLeg>(*next_.branch_switch, at_.branch + 1);
   }
-  // Before the first accepted step the heading is the tangent: no segment to turn back onto.
-  return std::make_unique<ContinuationLeg>(at_.accepted, at_.branch, at_.heading,
-                                           summary_.accepted_steps > 0, options_.lambda_weight);
+  // Before the first accepted step the heading is the tangent: no path to turn back onto.
+  return std::make_unique<ContinuationLeg>(at_.accepted, at_.branch, at_.heading, Trail(),
+                                           options_.lambda_weight);
+}
+
+// The turn-back guard's trail: x_k - heading (the state or kink the heading comes from), then
+// the accepted states behind, as increments from x_k.
+std::vector<Increment> ArcLengthTracer::Trail() const {
+  if (summary_.accepted_steps == 0) return {};
+  const State& x = at_.accepted.state;
+  std::vector<Increment> trail{{-at_.heading.du, -at_.heading.dlambda}};
+  for (const State& point : at_.behind) trail.push_back({point.u - x.u, point.lambda - x.lambda});
+  return trail;
+}
+
+// Keeps the state the step left from behind the path (none across a branch switch: the trail
+// starts again at the bifurcation point, which the heading reaches), as far back as twice the
+// nominal arc length, and at most kMaxBehind states.
+void ArcLengthTracer::KeepBehind(const StepAttempt& attempt) {
+  constexpr std::size_t kMaxBehind = 32;
+  if (attempt.branch_switch) {
+    at_.behind.clear();
+    return;
+  }
+  at_.behind.push_front(at_.accepted.state);
+  const double w = options_.lambda_weight;
+  double length =
+      HNorm(attempt.state.u - at_.behind[0].u, attempt.state.lambda - at_.behind[0].lambda, w);
+  std::size_t keep = 1;
+  while (keep < at_.behind.size() && keep < kMaxBehind && length < 2.0 * options_.arc_length) {
+    const State& a = at_.behind[keep - 1];
+    const State& b = at_.behind[keep];
+    length += HNorm(a.u - b.u, a.lambda - b.lambda, w);
+    ++keep;
+  }
+  at_.behind.resize(keep);
 }
 
 // Reports every rejected attempt; the accepted one is reported by Accept, after its kinks. A
@@ -227,6 +260,7 @@ std::vector<CriticalPointRecord> ArcLengthTracer::DetectCriticalPoints(const Ste
 void ArcLengthTracer::Accept(const StepAttempt& attempt,
                              const std::vector<CriticalPointRecord>& critical) {
   observer_.OnAttempt(attempt);
+  KeepBehind(attempt);
   for (const CriticalPointRecord& point : critical) {
     observer_.OnCriticalPoint(point);
     if (point.switched) next_.branch_switch = point;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <any>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,10 +38,13 @@ class ArcLengthTracer {
 
   // Where the path is: its last accepted state (the origin of the next step along the branch),
   // the direction it goes on in, and the branch it is on (0 initially, +1 per switch).
+  // `behind`: the accepted states before it on its branch, nearest first, covering
+  // at least twice the nominal arc length (the turn-back guard's trail, turn_back.h).
   struct Position {
     StepOrigin accepted;
     Increment heading;
     int branch = 0;
+    std::deque<State> behind;
   };
 
   // How the next step is taken: its arc length, the backend state its warm start may reuse,
@@ -53,6 +57,8 @@ class ArcLengthTracer {
 
   bool Start(const State& initial);
   std::unique_ptr<StepLeg> NextLeg() const;
+  std::vector<Increment> Trail() const;
+  void KeepBehind(const StepAttempt& attempt);
   // The kinks located within an accepted attempt, held until it is reported.
   struct LocatedKinks final : PathObserver {
     void OnKink(const KinkRecord& kink) override { records.push_back(kink); }

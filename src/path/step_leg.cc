@@ -7,10 +7,10 @@
 namespace cb {
 
 ContinuationLeg::ContinuationLeg(StepOrigin origin, int branch, Increment heading,
-                                 bool heading_is_a_step, double lambda_weight)
+                                 std::vector<Increment> trail, double lambda_weight)
     : StepLeg(std::move(origin), branch),
       heading_(std::move(heading)),
-      heading_is_a_step_(heading_is_a_step),
+      trail_(std::move(trail)),
       lambda_weight_(lambda_weight) {}
 
 StepConstraint ContinuationLeg::Constraint(int /*attempt*/, double theta,
@@ -24,7 +24,7 @@ Increment ContinuationLeg::Predict(int /*attempt*/, double theta) const {
 }
 
 bool ContinuationLeg::Reversed(const StepPoint& answer, double theta) const {
-  return TurnsBack(answer, heading_, heading_is_a_step_, theta, lambda_weight_);
+  return TurnsBack(answer, heading_, trail_, theta, lambda_weight_);
 }
 
 BranchSwitchLeg::BranchSwitchLeg(const CriticalPointRecord& bifurcation, int new_branch)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <utility>
+#include <vector>
 
 #include "path/arc_length_norm.h"
 #include "path/path.h"
@@ -43,9 +44,9 @@ class StepLeg {
 // increment (or the direction from a kink past a corner), or the tangent before the first step.
 class ContinuationLeg final : public StepLeg {
  public:
-  // heading_is_a_step: the heading is an increment just taken (there is a segment of the path
-  // to turn back onto), not the tangent.
-  ContinuationLeg(StepOrigin origin, int branch, Increment heading, bool heading_is_a_step,
+  // trail: the path traced behind the origin, as increments from it, nearest first (TurnsBack);
+  // empty before the first step, when the heading is the tangent.
+  ContinuationLeg(StepOrigin origin, int branch, Increment heading, std::vector<Increment> trail,
                   double lambda_weight);
 
   bool switches_branch() const override { return false; }
@@ -59,7 +60,7 @@ class ContinuationLeg final : public StepLeg {
 
  private:
   Increment heading_;
-  bool heading_is_a_step_;
+  std::vector<Increment> trail_;
   double lambda_weight_;
 };
 

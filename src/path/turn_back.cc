@@ -6,24 +6,31 @@
 namespace cb {
 namespace {
 
-// H-distance from the point x_k + (du, dl) to the segment from x_{k-1} = x_k - (pu, pl) to x_k.
-double DistanceToPreviousSegment(const Vec& du, double dl, const Vec& pu, double pl, double w) {
-  const double pp = HInner(pu, pl, pu, pl, w);
-  // Parameter s of the closest point x_k - s (pu, pl), s in [0, 1].
-  const double s = pp > 0.0 ? std::clamp(-HInner(du, dl, pu, pl, w) / pp, 0.0, 1.0) : 0.0;
-  const Vec eu = du + s * pu;
-  const double el = dl + s * pl;
-  return HNorm(eu, el, w);
+// H-distance from the point (du, dl) to the segment from a to b (increments from x_k).
+double DistanceToSegment(const Vec& du, double dl, const Increment& a, const Increment& b,
+                         double w) {
+  const Vec ab_u = b.du - a.du;
+  const double ab_l = b.dlambda - a.dlambda;
+  const double ab = HInner(ab_u, ab_l, ab_u, ab_l, w);
+  const Vec ap_u = du - a.du;
+  const double ap_l = dl - a.dlambda;
+  // Parameter s of the closest point a + s (b - a), s in [0, 1].
+  const double s = ab > 0.0 ? std::clamp(HInner(ap_u, ap_l, ab_u, ab_l, w) / ab, 0.0, 1.0) : 0.0;
+  return HNorm(ap_u - s * ab_u, ap_l - s * ab_l, w);
 }
 
 }  // namespace
 
-bool TurnsBack(const StepPoint& answer, const Increment& previous, bool have_segment, double theta,
-               double w) {
-  if (HInner(answer.du, answer.dlambda, previous.du, previous.dlambda, w) > 0.0) return false;
-  if (!have_segment) return true;
-  return DistanceToPreviousSegment(answer.du, answer.dlambda, previous.du, previous.dlambda, w) <=
-         0.05 * theta;
+bool TurnsBack(const StepPoint& answer, const Increment& heading,
+               const std::vector<Increment>& trail, double theta, double w) {
+  if (HInner(answer.du, answer.dlambda, heading.du, heading.dlambda, w) > 0.0) return false;
+  if (trail.empty()) return true;
+  Increment from{Vec::Zero(answer.du.size()), 0.0};  // x_k
+  for (const Increment& to : trail) {
+    if (DistanceToSegment(answer.du, answer.dlambda, from, to, w) <= 0.05 * theta) return true;
+    from = to;
+  }
+  return false;
 }
 
 }  // namespace cb
