@@ -9,7 +9,13 @@
 #   results/compare/                           the formulation comparison (scripts/run_compare.sh)
 #   results/bench/                             the benchmark binaries' JSON (scripts/run_bench.sh)
 #   results/figures/, REPORT.md, COMPARISON.md from those CSV/JSON files by results/plot.py
-# A run that fails keeps its records and the job goes on; the reports say what failed.
+# and last, the invariance check (scripts/check_invariance.sh, about two minutes): the examples
+# and readings again under other BLAS thread counts and linear solvers, compared with the first
+# run; its table goes to standard output, its records (about 200 MB) to a temporary directory
+# that is removed afterwards (or to INVARIANCE_DIR, kept), none to RESULTS_DIR: the reports do
+# not read them. docs/findings.md ("Invariance under rounding") has its table.
+# A run that fails keeps its records and the job goes on; the reports say what failed. A failed
+# invariance check (an invariant that moved) makes the job's exit status 3 too.
 # Usage: scripts/run_suite.sh [--quick]
 # Environment:
 #   BUILD_DIR=DIR    the build to set up and run (default build/)
@@ -18,7 +24,8 @@
 #                    results-quick/)
 #   SKIP_SETUP=1     neither install nor build: run the contactbench already built in BUILD_DIR
 #   SKIP_READINGS=1, SKIP_SOLID3D=1, SKIP_COMPARE=1, SKIP_BENCH=1 leave those parts (and their
-#                    old files) alone
+#                    old files) alone; SKIP_INVARIANCE=1 leaves the invariance check out
+#   INVARIANCE_DIR=DIR  keep the invariance check's records in DIR (not inside RESULTS_DIR)
 #   QUICK=1          the same as --quick
 #
 # --quick, the quick mode: a first look and a check of the pipeline in a minute or two after
@@ -26,7 +33,8 @@
 # examples, the readings and the 3-D solids run whole (seconds each), so REPORT.md is the full
 # one; the comparison runs only the sets arch-flat and arch-curved, on the first FULL_STEPS
 # (default 100) steps of each path, and block; the prefix and step-size sets and the benchmarks
-# are left out (SKIP_BENCH=0 adds the benchmarks, whole, at their full cost).
+# are left out (SKIP_BENCH=0 adds the benchmarks, whole, at their full cost), and so is the
+# invariance check (SKIP_INVARIANCE=0 adds it, whole).
 # It writes RESULTS_DIR/QUICK_MODE.txt, which says what was shortened, and REPORT.md and
 # COMPARISON.md open with a line saying they are the quick mode's (results/plotlib/quick.py).
 # It refuses to write into results/, the committed run.
@@ -42,9 +50,11 @@ for arg in "$@"; do
 done
 build="${BUILD_DIR:-$here/build}"
 skip_bench="${SKIP_BENCH:-0}"
+skip_invariance="${SKIP_INVARIANCE:-0}"
 if [[ $quick == 1 ]]; then
   out="${RESULTS_DIR:-$here/results-quick}"
   skip_bench="${SKIP_BENCH:-1}"
+  skip_invariance="${SKIP_INVARIANCE:-1}"
   quick_steps="${FULL_STEPS:-100}"
   if [[ "$(realpath -m "$out")" == "$(realpath -m "$here/results")" ]]; then
     echo "run_suite: --quick would mix shortened records into results/, the committed run;" \
@@ -77,6 +87,7 @@ if [[ $quick == 1 ]]; then
            "each path, block whole; no prefix or step-size sets."
     [[ $skip_bench != 1 ]] && echo "The benchmarks whole."
     [[ $skip_bench == 1 ]] && echo "No benchmarks."
+    [[ $skip_invariance != 1 ]] && echo "The invariance check whole (its table in the log only)."
     for name in READINGS SOLID3D COMPARE; do
       skip="SKIP_$name"
       [[ "${!skip:-0}" == 1 ]] && echo "$skip=1: that part's records, if any, are an earlier run's."
@@ -129,4 +140,22 @@ fi
 if [[ $skip_bench != 1 ]]; then part "$here/scripts/run_bench.sh"; fi
 
 /usr/bin/python3 "$here/results/plot.py" "$out" || status=3
+
+# The invariance check, last: its table to standard output, its records outside RESULTS_DIR.
+if [[ $skip_invariance != 1 ]]; then
+  if [[ -n "${INVARIANCE_DIR:-}" ]]; then
+    inv_dir="$INVARIANCE_DIR"
+  else
+    inv_dir="$(mktemp -d "${TMPDIR:-/tmp}/contactbench-invariance.XXXXXX")"
+  fi
+  case "$(realpath -m "$inv_dir")/" in
+    "$(realpath -m "$out")"/*)
+      echo "run_suite: INVARIANCE_DIR must not be inside RESULTS_DIR" >&2
+      status=3 ;;
+    *)
+      echo "== scripts/check_invariance.sh $cb $inv_dir" >&2
+      "$here/scripts/check_invariance.sh" "$cb" "$inv_dir" || status=3
+      if [[ -z "${INVARIANCE_DIR:-}" ]]; then rm -rf "$inv_dir"; fi ;;
+  esac
+fi
 exit $status
