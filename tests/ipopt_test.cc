@@ -494,6 +494,27 @@ TEST(IpoptTest, MpccScholtesColdOnTheArchFollowsThePath) {
             1e-6 * last.u.lpNorm<Eigen::Infinity>());
 }
 
+// The steep, soft two-bar truss meets its floor where the load is at its minimum: no MPCC step
+// crosses that corner (the sphere (33) cuts the floor below the contact load too, and Ipopt
+// goes there), so the path steps onto the kink ahead with (53) and leaves it along the floor
+// (kink_ahead.h): one kink, where the closed form puts it, and the load rising on the floor.
+TEST(IpoptTest, MpccStepsOntoAKinkAtTheLoadMinimum) {
+  SKIP_WITHOUT_IPOPT();
+  const Problem p = MakeProblem(
+      "two-bar-obstacle", {{"height", "1"}, {"floor_height", "0.4"}, {"axial_stiffness", "1"}});
+  const fixtures::TwoBarClosedForm t = fixtures::TwoBarOf(p);
+  const double floor = p.parameters.Real("floor_height");
+  auto f = Make("ipopt-mpcc");
+  const PathRun run = TraceWith(p, *f, 40, 0.05, StartKind::kWarm);
+  ASSERT_EQ(run.summary.status, Status::kConverged) << run.summary.message;
+  EXPECT_EQ(run.summary.kinks, 1);
+  EXPECT_GT(run.summary.final_state.lambda, t.Lambda(floor));
+  EXPECT_NEAR(t.h + run.summary.final_state.u[p.control_dof], floor, 1e-8);
+  for (const StepAttempt& a : run.collector.accepted) {
+    EXPECT_TRUE(fixtures::CheckTwoBarObstacle(p, a.state)) << "step " << a.step;
+  }
+}
+
 // Past the snap-through the two-bar truss lands on its floor: warm-started ipopt-mpcc follows the
 // contact branch and its kink solve (53) lands where the closed form says (as in path_test.cc).
 TEST(IpoptTest, MpccTwoBarOntoAFloorLocatesTheKink) {

@@ -6,6 +6,7 @@
 
 #include "path/stability.h"
 #include "path/step_solve.h"
+#include "path/turn_back.h"
 
 namespace cb {
 
@@ -19,6 +20,7 @@ ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales&
       observer_(observer != nullptr ? *observer : no_observer_),
       kink_locator_(model, scales, formulation, options),
       critical_point_finder_(model, scales, formulation, options),
+      kink_ahead_finder_(model, scales, kink_locator_, options),
       stagnation_(options.stagnation, options.arc_length, options.lambda_weight) {
   options.Validate();
 }
@@ -40,6 +42,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
         AbandonBranchSwitch();  // not a failure of the path: it goes on along its branch
         continue;
       }
+      if (StepOntoKinkAhead(step, *leg, attempt.attempt + 1)) continue;
       return Finish(Status::kFailed, StepFailure(step, attempt));
     }
     if (leg->switches_branch()) EnterNewBranch();
@@ -67,6 +70,7 @@ PathSummary ArcLengthTracer::Run(const State& initial) {
 // The first heading is the tangent predictor at `initial`.
 bool ArcLengthTracer::Start(const State& initial) {
   summary_ = PathSummary();
+  kinks_stepped_onto_.clear();
   summary_.final_state = initial;
   stagnation_ = StagnationMonitor(options_.stagnation, options_.arc_length, options_.lambda_weight);
   at_ = Position();
@@ -207,6 +211,68 @@ void ArcLengthTracer::AbandonBranchSwitch() {
   next_.theta = options_.arc_length;
 }
 
+// Every attempt of the step failed: if a contact change lies within twice theta ahead, the kink
+// itself is taken as the step (closed by (53), judged by the verdict, recorded as a kink), and
+// the path leaves it along the other piece (kink_ahead.h) at the nominal arc length, without a
+// backend state to reuse (the kink's is of another system).
+bool ArcLengthTracer::StepOntoKinkAhead(int step, const StepLeg& leg, int attempts) {
+  if (!options_.locate_kinks || at_.behind.empty()) return false;
+  std::optional<KinkAhead> ahead = kink_ahead_finder_.Find(
+      step, at_.behind.front(), at_.accepted.state, at_.heading, 2.0 * options_.arc_length);
+  if (!ahead) return false;
+  const State& from = at_.accepted.state;
+  // A kink stepped onto before: the path is going round between kinks, not on.
+  for (const auto& [pair, state] : kinks_stepped_onto_) {
+    if (pair == ahead->kink.pair &&
+        HNorm(state.u - ahead->kink.state.u, state.lambda - ahead->kink.state.lambda,
+              options_.lambda_weight) <= 1e-6 * options_.arc_length) {
+      return false;
+    }
+  }
+  // Leaving the kink must not go back onto the path traced (the piece it arrived on).
+  const Increment arrived{ahead->kink.state.u - from.u, ahead->kink.state.lambda - from.lambda};
+  std::vector<Increment> behind_kink{{-arrived.du, -arrived.dlambda}};
+  for (const State& b : at_.behind) {
+    behind_kink.push_back({b.u - ahead->kink.state.u, b.lambda - ahead->kink.state.lambda});
+  }
+  StepPoint leaving;
+  leaving.du = ahead->leave.du * options_.arc_length;
+  leaving.dlambda = ahead->leave.dlambda * options_.arc_length;
+  if (TurnsBack(leaving, arrived, behind_kink, options_.arc_length, options_.lambda_weight)) {
+    return false;
+  }
+  StepAttempt attempt;
+  attempt.step = step;
+  attempt.attempt = attempts;
+  attempt.kind = ConstraintKind::kKink;
+  attempt.branch = at_.branch;
+  const StepProblem kink_step{&model_, from, StepConstraint::Kink(ahead->kink.pair), scales_};
+  const int n_contact =
+      CountContacts(kink_step, ahead->kink.result.point.g, ahead->kink.result.point.r);
+  RecordJudgedStep({ahead->kink.result, ahead->kink.verdict, ahead->kink.state, n_contact},
+                   &attempt);
+  attempt.result.point.du = attempt.state.u - from.u;
+  attempt.result.point.dlambda = attempt.state.lambda - from.lambda;
+  attempt.arc_length =
+      HNorm(attempt.result.point.du, attempt.result.point.dlambda, options_.lambda_weight);
+  attempt.predicted_du = attempt.result.point.du;
+  attempt.predicted_dlambda = attempt.result.point.dlambda;
+  attempt.accepted = true;
+  attempt.kinks = 1;
+  attempt.kink = attempt.state;
+  observer_.OnKink(ahead->kink);
+  ++summary_.kinks;
+  ++summary_.attempts;
+  const std::vector<CriticalPointRecord> critical = DetectCriticalPoints(leg, &attempt);
+  Accept(attempt, critical);
+  at_.heading = {ahead->leave.du * options_.arc_length, ahead->leave.dlambda * options_.arc_length};
+  at_.on_kink = ahead->kink.pair;
+  kinks_stepped_onto_.emplace_back(ahead->kink.pair, ahead->kink.state);
+  next_.theta = options_.arc_length;
+  next_.warm_state.reset();
+  return true;
+}
+
 void ArcLengthTracer::EnterNewBranch() {
   ++at_.branch;
   ++summary_.branch_switches;
@@ -217,7 +283,8 @@ ArcLengthTracer::LocatedKinks ArcLengthTracer::LocateKinks(const StepLeg& leg,
                                                            const StepAttempt& attempt) const {
   LocatedKinks kinks;
   if (options_.locate_kinks) {
-    kinks.of_step = kink_locator_.Locate(attempt.step, leg.origin().state, attempt.state, kinks);
+    kinks.of_step = kink_locator_.Locate(attempt.step, leg.origin().state, attempt.state, kinks,
+                                         leg.switches_branch() ? -1 : at_.on_kink);
   }
   return kinks;
 }
@@ -269,6 +336,7 @@ void ArcLengthTracer::Accept(const StepAttempt& attempt,
       attempt.state, attempt.stability,
       StepOrigin::PreviousStep{attempt.result.point.dlambda, attempt.kinks, attempt.kink}};
   summary_.final_state = attempt.state;
+  at_.on_kink = -1;
   ++summary_.accepted_steps;
   next_.theta = std::min(options_.arc_length, 2.0 * next_.theta);
   // A step leaving a bifurcation point starts there, not where this solve ended: this solve's

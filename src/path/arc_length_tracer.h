@@ -14,6 +14,7 @@
 
 #include "path/arc_length_norm.h"
 #include "path/critical_points.h"
+#include "path/kink_ahead.h"
 #include "path/kink_location.h"
 #include "path/path.h"
 #include "path/stagnation.h"
@@ -45,6 +46,7 @@ class ArcLengthTracer {
     Increment heading;
     int branch = 0;
     std::deque<State> behind;
+    int on_kink = -1;  // the pair whose kink the state is, after a step onto a kink ahead
   };
 
   // How the next step is taken: its arc length, the backend state its warm start may reuse,
@@ -70,6 +72,7 @@ class ArcLengthTracer {
                               LocatedKinks* kinks);
   StepAttempt Attempt(int step, int index, const StepLeg& leg);
   void AbandonBranchSwitch();
+  bool StepOntoKinkAhead(int step, const StepLeg& leg, int attempts);
   void EnterNewBranch();
   LocatedKinks LocateKinks(const StepLeg& leg, const StepAttempt& attempt) const;
   void RecordKinksAndRedirect(const LocatedKinks& kinks, StepAttempt* attempt);
@@ -87,7 +90,10 @@ class ArcLengthTracer {
   PathObserver& observer_;
   const KinkLocator kink_locator_;
   const CriticalPointFinder critical_point_finder_;
+  const KinkAheadFinder kink_ahead_finder_;
 
+  // The kinks stepped onto so far (pair and state): a path that comes back to one cycles.
+  std::vector<std::pair<int, State>> kinks_stepped_onto_;
   PathSummary summary_;
   StagnationMonitor stagnation_;
   Position at_;

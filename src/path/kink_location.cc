@@ -15,18 +15,14 @@ KinkLocator::KinkLocator(const ContactModel& model, const ContactScales& scales,
                          Formulation& formulation, const PathOptions& options)
     : model_(model), scales_(scales), formulation_(formulation), options_(options) {}
 
-// Solves (53) for pair p from accepted state `from`, predicted at the fraction t of the chord
-// towards `to`.
-KinkRecord KinkLocator::Solve(int step, int p, const State& from, const State& to, double t) const {
-  const double w = options_.lambda_weight;
-  const Vec du_step = to.u - from.u;
-  const double dl_step = to.lambda - from.lambda;
+KinkRecord KinkLocator::SolveFrom(int step, int p, const State& from, const Increment& predicted,
+                                  const Vec& r0) const {
   StepProblem kink_step{&model_, from, StepConstraint::Kink(p), scales_};
   StartPoint start;
   start.kind = StartKind::kWarm;
-  start.du = t * du_step;
-  start.dlambda = t * dl_step;
-  start.r = from.r + t * (to.r - from.r);
+  start.du = predicted.du;
+  start.dlambda = predicted.dlambda;
+  start.r = r0;
   JudgedStep kink = SolveAndJudge(formulation_, kink_step, start, options_);
   KinkRecord record;
   record.step = step;
@@ -34,8 +30,18 @@ KinkRecord KinkLocator::Solve(int step, int p, const State& from, const State& t
   record.result = std::move(kink.result);
   record.verdict = kink.verdict;
   record.state = std::move(kink.state);
-  // On the path between the two states: within two chords of each. (A step may cut across a
-  // corner of the path, so the kink need not lie inside the chord's ball.)
+  return record;
+}
+
+// Solves (53) for pair p from accepted state `from`, predicted at the fraction t of the chord
+// towards `to`; on the path between the two states when within two chords of each. (A step may
+// cut across a corner of the path, so the kink need not lie inside the chord's ball.)
+KinkRecord KinkLocator::Solve(int step, int p, const State& from, const State& to, double t) const {
+  const double w = options_.lambda_weight;
+  const Vec du_step = to.u - from.u;
+  const double dl_step = to.lambda - from.lambda;
+  KinkRecord record =
+      SolveFrom(step, p, from, {t * du_step, t * dl_step}, from.r + t * (to.r - from.r));
   const double chord = HNorm(du_step, dl_step, w);
   const double from_start = HNorm(record.state.u - from.u, record.state.lambda - from.lambda, w);
   const double to_end = HNorm(to.u - record.state.u, to.lambda - record.state.lambda, w);
@@ -43,8 +49,8 @@ KinkRecord KinkLocator::Solve(int step, int p, const State& from, const State& t
   return record;
 }
 
-KinksOfStep KinkLocator::Locate(int step, const State& a, const State& b,
-                                PathObserver& observer) const {
+KinksOfStep KinkLocator::Locate(int step, const State& a, const State& b, PathObserver& observer,
+                                int on_kink) const {
   const Vec ga = GapsAt(model_, a.u);
   const Vec gb = GapsAt(model_, b.u);
   const std::vector<bool> ca = ClosedPairs(scales_, ga, a.r);
@@ -52,7 +58,7 @@ KinksOfStep KinkLocator::Locate(int step, const State& a, const State& b,
   KinksOfStep kinks;
   double nearest_distance = std::numeric_limits<double>::infinity();
   for (int p = 0; p < model_.num_pairs(); ++p) {
-    if (ca[p] == cb[p]) continue;
+    if (ca[p] == cb[p] || p == on_kink) continue;
     // Switching function s = g/L + r/R changes sign at the kink; interpolate it linearly.
     const double sa = ga[p] / scales_.length + a.r[p] / scales_.force;
     const double sb = gb[p] / scales_.length + b.r[p] / scales_.force;

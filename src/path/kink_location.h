@@ -5,6 +5,7 @@
 
 #include <optional>
 
+#include "path/arc_length_norm.h"
 #include "path/path.h"
 
 namespace cb {
@@ -23,7 +24,14 @@ class KinkLocator {
 
   // Solves (53) for every pair whose status differs between accepted states a and b (the step
   // `step` from a to b), reporting each through observer.OnKink.
-  KinksOfStep Locate(int step, const State& a, const State& b, PathObserver& observer) const;
+  // A pair `on_kink` >= 0 is skipped: a is its kink (a step onto a kink ahead; kink_ahead.h).
+  KinksOfStep Locate(int step, const State& a, const State& b, PathObserver& observer,
+                     int on_kink = -1) const;
+
+  // Solves (53) for pair p from accepted state `from`, predicted by the increment `predicted`
+  // and the reactions `r0`; `between` is left false for the caller to judge.
+  KinkRecord SolveFrom(int step, int p, const State& from, const Increment& predicted,
+                       const Vec& r0) const;
 
  private:
   KinkRecord Solve(int step, int p, const State& from, const State& to, double t) const;

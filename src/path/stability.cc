@@ -24,16 +24,29 @@ std::vector<bool> ClosedPairs(const ContactScales& scales, const Vec& g, const V
 
 BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactScales& scales,
                                      const State& state, Use use)
-    : dofs_(model.num_dofs()) {
+    : dofs_(model.num_dofs()), pairs_(model.num_pairs()) {
+  const std::vector<bool> closed = ClosedPairs(scales, GapsAt(model, state.u), state.r);
+  for (int p = 0; p < pairs_; ++p) {
+    if (closed[p]) closed_pairs_.push_back(p);
+  }
+  Build(model, state, use);
+}
+
+BorderedStiffness::BorderedStiffness(const ContactModel& model, const ContactScales& /*scales*/,
+                                     const State& state, const std::vector<bool>& closed)
+    : dofs_(model.num_dofs()), pairs_(model.num_pairs()) {
+  for (int p = 0; p < pairs_; ++p) {
+    if (closed[p]) closed_pairs_.push_back(p);
+  }
+  Build(model, state, Use::kModesAndSolves);
+}
+
+void BorderedStiffness::Build(const ContactModel& model, const State& state, Use use) {
   const int d = dofs_;
   SpMat stiffness, curvature, gap_jacobian;
   model.Stiffness(state.u, &stiffness);
   model.GapCurvature(state.u, state.r, &curvature);
   model.GapJacobian(state.u, &gap_jacobian);
-  const std::vector<bool> closed = ClosedPairs(scales, GapsAt(model, state.u), state.r);
-  for (int p = 0; p < model.num_pairs(); ++p) {
-    if (closed[p]) closed_pairs_.push_back(p);
-  }
   const int m = num_closed();
   std::vector<Triplet> t;
   t.reserve(stiffness.nonZeros() + curvature.nonZeros() + 4 * gap_jacobian.nonZeros());
@@ -104,6 +117,18 @@ bool BorderedStiffness::SolveDisplacement(const Vec& rhs, Vec* du) const {
   const Vec solution = lu_.solve(full);
   if (!solution.allFinite()) return false;
   *du = solution.head(dofs_);
+  return true;
+}
+
+bool BorderedStiffness::Solve(const Vec& rhs, Vec* du, Vec* dr) const {
+  if (!ok_) return false;
+  Vec full = Vec::Zero(dofs_ + num_closed());
+  full.head(dofs_) = rhs;
+  const Vec solution = lu_.solve(full);
+  if (!solution.allFinite()) return false;
+  *du = solution.head(dofs_);
+  *dr = Vec::Zero(pairs_);
+  for (int k = 0; k < num_closed(); ++k) (*dr)[closed_pairs_[k]] = solution[dofs_ + k];
   return true;
 }
 

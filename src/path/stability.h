@@ -37,6 +37,10 @@ class BorderedStiffness {
   // Assembles A at `state`, counts its unstable modes and, for kModesAndSolves, factorises it.
   BorderedStiffness(const ContactModel& model, const ContactScales& scales, const State& state,
                     Use use = Use::kModesAndSolves);
+  // The same with the closed pairs given (one flag per pair) instead of read off the state: the
+  // two pieces of the path at a kink, where the state itself is on both.
+  BorderedStiffness(const ContactModel& model, const ContactScales& scales, const State& state,
+                    const std::vector<bool>& closed);
 
   // False when A is numerically singular, not finite or not factorised (kModes); message()
   // says why.
@@ -48,6 +52,8 @@ class BorderedStiffness {
 
   // The displacement part du of the solution of A [du; dr] = [rhs; 0].
   bool SolveDisplacement(const Vec& rhs, Vec* du) const;
+  // Both parts: du, and dr for every pair (0 for the open ones).
+  bool Solve(const Vec& rhs, Vec* du, Vec* dr) const;
 
   // An orthonormal basis (d x k) of the displacement parts of the k-dimensional near-null
   // space of A at a point where k eigenvalues are near zero, by block inverse iteration (A is
@@ -55,7 +61,10 @@ class BorderedStiffness {
   bool NullSpace(int k, int iterations, Mat* basis) const;
 
  private:
+  void Build(const ContactModel& model, const State& state, Use use);
+
   int dofs_ = 0;
+  int pairs_ = 0;
   std::vector<int> closed_pairs_;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
   bool ok_ = false;
