@@ -139,8 +139,6 @@ struct KnownLimitation {
 };
 constexpr KnownLimitation kKnownLimitations[] = {
     {"nlopt-merit", "block_n10", "LD_LBFGS on the merit stops (NLopt FAILURE) on P1 at n = 10"},
-    {"nlopt-merit", "two_bar_obstacle_path",
-     "LD_LBFGS on the merit does not reach the 1e-8 verdict near the kink (step 40)"},
     {"nlopt-energy", "lcp2", "stops at eq_res ~4e-8 (tolerance reached), above the 1e-8 verdict"},
     {"nlopt-energy", "block_n10", "reaches maxeval with eq_res ~1e-3 on P1 at n = 10"},
     {"petsc-rsls", "two_bar_obstacle_path",
