@@ -67,19 +67,7 @@ for solver in newton quasi-newton; do
     --save-every 200")
 done
 # The readings of scripts/run_readings.sh: name | P2 settings | P3 settings.
-all_readings=(
-  "default||"
-  "centre-thinned|centre_area=0.045|centre_area=0.045"
-  "pratt|topology=pratt|topology=pratt"
-  "howe|topology=howe|topology=howe"
-  "x-braced|topology=x-braced|topology=x-braced"
-  "from-centre|area_groups=from-centre|area_groups=from-centre"
-  "uniform|area_groups=uniform area_first=0.19|area_groups=uniform area_first=0.39"
-  "by-member-type|area_groups=by-member-type|area_groups=by-member-type"
-  "vertical|lower_placement=vertical|lower_placement=vertical"
-  "howe-vertical|topology=howe lower_placement=vertical|topology=howe lower_placement=vertical"
-  "x-braced-vertical|topology=x-braced lower_placement=vertical|topology=x-braced lower_placement=vertical"
-)
+mapfile -t all_readings < <(grep -v -e '^#' -e '^$' "$here/scripts/readings.txt")
 chosen="${READINGS-howe centre-thinned x-braced from-centre howe-vertical}"
 for entry in "${all_readings[@]}"; do
   IFS='|' read -r reading p2 p3 <<<"$entry"

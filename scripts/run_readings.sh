@@ -44,25 +44,8 @@ run() {  # run READING PROBLEM SOLVER SUBDIR "KEY=VALUE ..."
   echo "$reading,$problem,$solver,$subdir,\"$settings\",$rc" >>"$index"
 }
 
-# reading | P2 settings | P3 settings (uniform: the mean of the default areas, so that the
-# truss's stiffness and hence the load scale stay comparable). The last two combine an aligned
-# topology with the vertical placement: of all combinations of topology, placement and area
-# rule, the two that make B a kink (docs/findings.md).
-howe_vertical="topology=howe lower_placement=vertical"
-x_vertical="topology=x-braced lower_placement=vertical"
-readings=(
-  "default||"
-  "centre-thinned|centre_area=0.045|centre_area=0.045"
-  "pratt|topology=pratt|topology=pratt"
-  "howe|topology=howe|topology=howe"
-  "x-braced|topology=x-braced|topology=x-braced"
-  "from-centre|area_groups=from-centre|area_groups=from-centre"
-  "uniform|area_groups=uniform area_first=0.19|area_groups=uniform area_first=0.39"
-  "by-member-type|area_groups=by-member-type|area_groups=by-member-type"
-  "vertical|lower_placement=vertical|lower_placement=vertical"
-  "howe-vertical|$howe_vertical|$howe_vertical"
-  "x-braced-vertical|$x_vertical|$x_vertical"
-)
+# reading | P2 settings | P3 settings: scripts/readings.txt.
+mapfile -t readings < <(grep -v -e '^#' -e '^$' "$here/scripts/readings.txt")
 for entry in "${readings[@]}"; do
   IFS='|' read -r reading p2 p3 <<<"$entry"
   run "$reading" arch-flat newton "$reading/arch-flat" "$p2"
