@@ -255,8 +255,11 @@ bool ArcLengthTracer::StepOntoKinkAhead(int step, const StepLeg& leg, int attemp
   attempt.result.point.dlambda = attempt.state.lambda - from.lambda;
   attempt.arc_length =
       HNorm(attempt.result.point.du, attempt.result.point.dlambda, options_.lambda_weight);
-  attempt.predicted_du = attempt.result.point.du;
-  attempt.predicted_dlambda = attempt.result.point.dlambda;
+  // The path's own predictor of that length (what a replay of the step starts from).
+  const double scale =
+      attempt.arc_length / HNorm(at_.heading.du, at_.heading.dlambda, options_.lambda_weight);
+  attempt.predicted_du = at_.heading.du * scale;
+  attempt.predicted_dlambda = at_.heading.dlambda * scale;
   attempt.accepted = true;
   attempt.kinks = 1;
   attempt.kink = attempt.state;

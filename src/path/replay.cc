@@ -19,9 +19,14 @@ StepProblem ReplayedStep(const ContactModel& model, const ContactScales& scales,
     case ConstraintKind::kHyperplane:
       return {&model, *step.switch_origin,
               StepConstraint::Hyperplane(step.plane_normal, 0.0, step.arc_length), scales};
-    default:
-      return {&model, previous, StepConstraint::ArcLength(step.arc_length, w), scales};
+    case ConstraintKind::kArcLength:
+    case ConstraintKind::kDisplacement:
+    // A step onto a kink ahead (kink_ahead.h) is replayed as the arc-length step of its length
+    // along its own increment: the sphere meets the path at the kink.
+    case ConstraintKind::kKink:
+      break;
   }
+  return {&model, previous, StepConstraint::ArcLength(step.arc_length, w), scales};
 }
 
 StartPoint ReplayedStart(const StepProblem& step, const PathRecorder& reference, int k,
