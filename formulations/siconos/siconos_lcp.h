@@ -43,6 +43,12 @@
 //    1 is found as > 1/2: c is 1e-3 times the smallest diagonal entry of K on a contact dof, so
 //    the elastic eigenvalues c s2 = c lambda_C / (1 + c lambda_C) of a contact compliance
 //    lambda_C stay far below 1/2).
+//    The eigenvalue 1 is multiple (m = 3 for P1), so any orthonormal basis of the rigid gaps is
+//    an eigenbasis, and the eigensolver's is chosen by the rounding of A (the BLAS threads of
+//    the sparse solves move it), while Lemke's pivots depend on the basis: V1 is taken
+//    canonical instead (CanonicalRigidBasis: fixed vectors projected onto the rigid space,
+//    orthonormalised in order), which depends on the space only, and e = -S1^-1 V1^T h with
+//    S1 = V1^T A V1 (~ I / c), the form that holds for any basis of the space.
 #pragma once
 
 #include <memory>
@@ -73,6 +79,8 @@ class SteppedLcp {
   static const char* KindName(Kind kind);
   int size() const { return static_cast<int>(q_.size()); }
   int num_rigid_modes() const { return static_cast<int>(rigid_.cols()); }
+  // V1 (nc x m), the basis of the rigid gaps the LCP is written in (empty without rigid modes).
+  const Mat& rigid_basis() const { return rigid_; }
   // Column-major n x n, the storage Siconos's dense NumericsMatrix takes.
   const Mat& m() const { return m_; }
   const Vec& q() const { return q_; }
@@ -82,6 +90,14 @@ class SteppedLcp {
   Vec ZFromPoint(const Vec& du, const Vec& r) const;
   // The step's point (physical units) from z^: du, g from the model at u^k + du, r, dlambda.
   StepPoint PointFromZ(const Vec& z) const;
+
+  // The basis of the rigid gaps given any orthonormal basis `v1` (nc x m) of them: the
+  // projections v1 v1^T X of fixed reference vectors X (nc x m, pseudo-random from a fixed seed),
+  // orthonormalised in order by QR with R's diagonal positive. It depends on the span of v1 only
+  // (v1 Q gives the same for any orthogonal Q), and moves with it as little as the projector
+  // does: a perturbation of A moves the eigensolver's basis of a multiple eigenvalue by its size
+  // over the eigenvalues' spread, this one by its size over the gap to the elastic ones.
+  static Mat CanonicalRigidBasis(const Mat& v1);
 
  private:
   void BuildAsGiven();
