@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -198,6 +199,30 @@ TEST(SiconosLcpTest, P1sLcpMovesWithItsInputNoMore) {
               1e-10 * lcp.q().lpNorm<Eigen::Infinity>())
         << seed;
   }
+}
+
+TEST(SiconosLcpTest, TheSplitRigidRowsAreRelaxedByDelta) {
+  // The rows of a+ and a- read -V1^T z^ + e / R + delta and V1^T z^ - e / R + delta: they add
+  // up to 2 delta > 0 whatever z^, so no solution has both at 0 (neither ties with Lemke's z0
+  // at the last pivot, and a+ a- = 0 at every solution).
+  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
+  const SteppedLcp lcp(block.Step());
+  const int nc = block.problem.model->num_pairs();
+  const int m = lcp.num_rigid_modes();
+  const Vec plus = lcp.q().segment(nc, m);
+  const Vec minus = lcp.q().segment(nc + m, m);
+  const Vec e = 0.5 * (plus - minus);  // e / R
+  const double delta = lcp.rigid_relaxation();
+  const double e_max = std::max(1.0, e.lpNorm<Eigen::Infinity>());
+  EXPECT_NEAR(delta, SteppedLcp::kRigidRelaxation * e_max, 1e-3 * delta);
+  EXPECT_GT(delta, 0.0);
+  // Up to the rounding of e / R + delta.
+  EXPECT_LE(((plus + minus).array() - 2.0 * delta).abs().maxCoeff(), 1e-15 * e_max);
+  // w+ + w- of the two rows for any z^: M's rows are -V1^T and V1^T (the coupling is skew).
+  EXPECT_EQ(Mat(lcp.m().middleRows(nc, m) + lcp.m().middleRows(nc + m, m)).norm(), 0.0);
+  // The elimination of a supported body has no such rows.
+  const SpringsAgainstWall held(2.0, 3.0, 1.0, 0.5);
+  EXPECT_EQ(SteppedLcp(FixedLoadStep(held, 2.0, 0.1, 4.0)).rigid_relaxation(), 0.0);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -237,6 +238,9 @@ void SteppedLcp::BuildEliminated() {
   // V1^T z = e = -S1^-1 V1^T h.
   const Mat s1 = rigid_.transpose() * a * rigid_;
   const Vec e = -s1.ldlt().solve(rigid_.transpose() * h);
+  // Both rows of each rigid equality relaxed by delta, so that no solution is degenerate (the
+  // top of the header).
+  relaxation_ = kRigidRelaxation * std::max(1.0, (e / force).lpNorm<Eigen::Infinity>());
   const int n = nc + 2 * rigid;
   m_ = Mat::Zero(n, n);
   q_ = Vec::Zero(n);
@@ -246,8 +250,8 @@ void SteppedLcp::BuildEliminated() {
   m_.block(nc, 0, rigid, nc) = -rigid_.transpose();
   m_.block(nc + rigid, 0, rigid, nc) = rigid_.transpose();
   q_.head(nc) = q_elastic / length;
-  q_.segment(nc, rigid) = e / force;
-  q_.segment(nc + rigid, rigid) = -e / force;
+  q_.segment(nc, rigid) = (e / force).array() + relaxation_;
+  q_.segment(nc + rigid, rigid) = (-e / force).array() + relaxation_;
 }
 
 Mat SteppedLcp::CanonicalRigidBasis(const Mat& v1) {

@@ -49,6 +49,17 @@
 //    canonical instead (CanonicalRigidBasis: fixed vectors projected onto the rigid space,
 //    orthonormalised in order), which depends on the space only, and e = -S1^-1 V1^T h with
 //    S1 = V1^T A V1 (~ I / c), the form that holds for any basis of the space.
+//    As two rows, the equality is degenerate: with Lemke's covering vector d = 1 the rows of
+//    a+ and a- add up to w+ + w- = 2 z0, so both are 0 at every solution, z0's row ties exactly
+//    with one of them at Lemke's last pivot (a tie that the last bit decides: if the w row
+//    leaves, z0 stays basic and the path can end on a ray), and a+, a- solve for a = a+ - a-
+//    only (the Newton solvers' singular matrices). Both rows are therefore relaxed by
+//        delta = 1e-12 max(1, |e / R|_inf):   e / R + delta  and  -e / R + delta,
+//    so that |V1^T z^ - e / R| <= delta: w+ + w- = 2 delta > 0 at every solution, z0 leaves
+//    alone, and at most one of a+, a- is positive (a is unique). The answer balances the load
+//    along the rigid modes to delta R in each component of V1^T r, 1e-12 of the reactions'
+//    scale; the verdict judges the recovered point on the step's own rows (29)-(30), not on
+//    this LCP, so a relaxation that mattered would show there (at 1e-8).
 #pragma once
 
 #include <memory>
@@ -81,6 +92,10 @@ class SteppedLcp {
   int num_rigid_modes() const { return static_cast<int>(rigid_.cols()); }
   // V1 (nc x m), the basis of the rigid gaps the LCP is written in (empty without rigid modes).
   const Mat& rigid_basis() const { return rigid_; }
+  // delta, by which both rows of each rigid equality are relaxed (0 without rigid modes).
+  double rigid_relaxation() const { return relaxation_; }
+  // delta = kRigidRelaxation max(1, |e / R|_inf).
+  static constexpr double kRigidRelaxation = 1e-12;
   // Column-major n x n, the storage Siconos's dense NumericsMatrix takes.
   const Mat& m() const { return m_; }
   const Vec& q() const { return q_; }
@@ -115,6 +130,7 @@ class SteppedLcp {
   double penalty_ = 0.0;
   Vec rhs_;
   Mat rigid_;
+  double relaxation_ = 0.0;
 };
 
 }  // namespace cb
