@@ -1,6 +1,7 @@
 // The Siconos formulations (formulations/siconos/): solves judged by the verdict against closed
 // forms and against each other (an LCP as given, a linear model after elimination), the warm
-// start, the status mapping of Siconos's info codes, the controls, and the options. The shared
+// start, the status mapping of Siconos's info codes (a ray is no limit), the counts on P1 under
+// a perturbation at the level of rounding, the controls, and the options. The shared
 // fixtures are run by tests/formulations_test.cc; the refusals by siconos_lcp_test.cc.
 #include "formulations/siconos/siconos.h"
 
@@ -167,6 +168,23 @@ TEST(SiconosTest, TheIterationLimitIsReportedAsSuch) {
   const StepResult r = f->Solve(step, Start(step, StartKind::kCold));
   EXPECT_EQ(r.status, Status::kLimitReached) << r.message;
   EXPECT_EQ(r.details.at("siconos_info"), "1 iteration limit reached");
+  EXPECT_FALSE(Judge(step, r.point, 1e-8).verified);
+}
+
+TEST(SiconosTest, LemkesRayIsAFailureNotTheLimit) {
+  // w = -z - 1 has no z >= 0 with w >= 0: Lemke's path ends on a ray after a pivot or two,
+  // which Siconos 4.4 reports with info 1, the code of its pivot limit (10000).
+  SKIP_WITHOUT_SICONOS();
+  const ComplementarityModel model =
+      ComplementarityModel::Lcp(Mat(-Mat::Identity(2, 2)), Vec::Constant(2, -1.0));
+  const StepProblem step = FixedLoadStep(model, 0.0, 1.0, 1.0);
+  auto f = Make("siconos-lemke");
+  const StepResult r = f->Solve(step, Start(step, StartKind::kCold));
+  EXPECT_EQ(r.status, Status::kFailed) << r.message;
+  EXPECT_LT(r.counts.iterations, 10);
+  EXPECT_EQ(r.details.at("siconos_info").rfind("1 ray termination", 0), 0U)
+      << r.details.at("siconos_info");
+  EXPECT_NE(r.message.find("below the limit of 10000"), std::string::npos) << r.message;
   EXPECT_FALSE(Judge(step, r.point, 1e-8).verified);
 }
 
