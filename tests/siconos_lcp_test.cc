@@ -1,13 +1,17 @@
 // The dense LCP of a step (formulations/siconos/siconos_lcp.h), without Siconos: the scaling of
 // an LCP as it is, the elimination M = G K^-1 G^T against a closed form and against the LCP it
-// inverts, the recovered points judged by the verdict, and the refusals with their reasons.
+// inverts, the recovered points judged by the verdict, the refusals with their reasons, and the
+// basis of the rigid gaps (set by the rigid space, not by the eigensolver or rounding).
 #include "formulations/siconos/siconos_lcp.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "fixtures.h"
 #include "siconos_test_models.h"
@@ -17,7 +21,13 @@ namespace cb {
 namespace {
 
 using siconos_test::FixedLoadStep;
+using siconos_test::ScaledPairs;
 using siconos_test::SpringsAgainstWall;
+
+// P1's fixed-load step at n x n elements on `model` (P1's own, or one equivalent to it).
+StepProblem BlockStep(const Problem& block, const ContactModel& model) {
+  return {&model, ZeroState(model), StepConstraint::FixedLoad(block.load), block.scales};
+}
 
 TEST(SiconosLcpTest, AnLcpAsGivenIsScaledByLAndR) {
   // lcp2: M = [[2, 1], [1, 2]], q = (-5, -6), z = (4/3, 7/3), w = 0 (tests/fixtures.h).
@@ -146,6 +156,73 @@ TEST(SiconosLcpTest, P1KeepsItsThreeRigidModes) {
   // Positive semidefinite: the rigid coupling is skew, the elastic block symmetric PSD.
   const Mat sym = 0.5 * (lcp.m() + lcp.m().transpose());
   EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat>(sym).eigenvalues().minCoeff(), -1e-9);
+}
+
+TEST(SiconosLcpTest, TheRigidBasisDependsOnTheRigidSpaceOnly) {
+  // c A's eigenvalue 1 is triple on P1, so every orthonormal basis of the rigid gaps is an
+  // eigenbasis and the eigensolver's is one that rounding picks. Any of them, turned within the
+  // span, gives the LCP's basis back.
+  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
+  const SteppedLcp lcp(block.Step());
+  const Mat& v1 = lcp.rigid_basis();
+  ASSERT_EQ(v1.cols(), 3);
+  EXPECT_LE((v1.transpose() * v1 - Mat::Identity(3, 3)).norm(), 1e-14);
+  std::mt19937 generator(11);
+  std::normal_distribution<double> normal;
+  for (int turn = 0; turn < 5; ++turn) {
+    Mat random(3, 3);
+    for (int k = 0; k < 9; ++k) random(k % 3, k / 3) = normal(generator);
+    const Mat q = Eigen::HouseholderQR<Mat>(random).householderQ();
+    EXPECT_LE((SteppedLcp::CanonicalRigidBasis(Mat(v1 * q)) - v1).norm(), 1e-13) << turn;
+  }
+}
+
+TEST(SiconosLcpTest, P1sLcpMovesWithItsInputNoMore) {
+  // P1 (n = 20) with its pair rows scaled by 1 + O(1e-14): the same problem, perturbed at the
+  // level of the rounding that the BLAS threads of the sparse solves bring into A. The triple
+  // eigenvalue comes out spread by ~1e-11, and the eigensolver's basis of it moved by 2e-4 to
+  // 1.5e-3 under these perturbations (q by 0.03 to 0.15 of its 34); the LCP handed to Siconos
+  // now moves by about as much as its input (M by 7e-15, q by 6e-13).
+  const Problem block = MakeProblem("block", {{"n", "20"}});
+  const SteppedLcp lcp(BlockStep(block, *block.model));
+  ASSERT_EQ(lcp.num_rigid_modes(), 3);
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const ScaledPairs model(*block.model,
+                            ScaledPairs::Factors(block.model->num_pairs(), 1e-14, seed));
+    const SteppedLcp other(BlockStep(block, model));
+    ASSERT_EQ(other.num_rigid_modes(), 3);
+    EXPECT_LE((other.rigid_basis() - lcp.rigid_basis()).lpNorm<Eigen::Infinity>(), 1e-10) << seed;
+    EXPECT_LE((other.m() - lcp.m()).lpNorm<Eigen::Infinity>(),
+              1e-10 * lcp.m().lpNorm<Eigen::Infinity>())
+        << seed;
+    EXPECT_LE((other.q() - lcp.q()).lpNorm<Eigen::Infinity>(),
+              1e-10 * lcp.q().lpNorm<Eigen::Infinity>())
+        << seed;
+  }
+}
+
+TEST(SiconosLcpTest, TheSplitRigidRowsAreRelaxedByDelta) {
+  // The rows of a+ and a- read -V1^T z^ + e / R + delta and V1^T z^ - e / R + delta: they add
+  // up to 2 delta > 0 whatever z^, so no solution has both at 0 (neither ties with Lemke's z0
+  // at the last pivot, and a+ a- = 0 at every solution).
+  const fixtures::Fixture& block = fixtures::FindFixture("block_n10");
+  const SteppedLcp lcp(block.Step());
+  const int nc = block.problem.model->num_pairs();
+  const int m = lcp.num_rigid_modes();
+  const Vec plus = lcp.q().segment(nc, m);
+  const Vec minus = lcp.q().segment(nc + m, m);
+  const Vec e = 0.5 * (plus - minus);  // e / R
+  const double delta = lcp.rigid_relaxation();
+  const double e_max = std::max(1.0, e.lpNorm<Eigen::Infinity>());
+  EXPECT_NEAR(delta, SteppedLcp::kRigidRelaxation * e_max, 1e-3 * delta);
+  EXPECT_GT(delta, 0.0);
+  // Up to the rounding of e / R + delta.
+  EXPECT_LE(((plus + minus).array() - 2.0 * delta).abs().maxCoeff(), 1e-15 * e_max);
+  // w+ + w- of the two rows for any z^: M's rows are -V1^T and V1^T (the coupling is skew).
+  EXPECT_EQ(Mat(lcp.m().middleRows(nc, m) + lcp.m().middleRows(nc + m, m)).norm(), 0.0);
+  // The elimination of a supported body has no such rows.
+  const SpringsAgainstWall held(2.0, 3.0, 1.0, 0.5);
+  EXPECT_EQ(SteppedLcp(FixedLoadStep(held, 2.0, 0.1, 4.0)).rigid_relaxation(), 0.0);
 }
 
 }  // namespace

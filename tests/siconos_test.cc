@@ -1,6 +1,7 @@
 // The Siconos formulations (formulations/siconos/): solves judged by the verdict against closed
 // forms and against each other (an LCP as given, a linear model after elimination), the warm
-// start, the status mapping of Siconos's info codes, the controls, and the options. The shared
+// start, the status mapping of Siconos's info codes (a ray is no limit), the counts on P1 under
+// a perturbation at the level of rounding, the controls, and the options. The shared
 // fixtures are run by tests/formulations_test.cc; the refusals by siconos_lcp_test.cc.
 #include "formulations/siconos/siconos.h"
 
@@ -13,6 +14,8 @@
 
 #include "formulations/registry.h"
 #include "model/complementarity_model.h"
+#include "path/path.h"
+#include "problems/problem.h"
 #include "siconos_test_models.h"
 #include "verdict/verdict.h"
 
@@ -20,6 +23,7 @@ namespace cb {
 namespace {
 
 using siconos_test::FixedLoadStep;
+using siconos_test::ScaledPairs;
 using siconos_test::SpringsAgainstWall;
 
 const char* const kNames[] = {"siconos-lemke", "siconos-newton-fb", "siconos-newton-min"};
@@ -106,6 +110,39 @@ TEST(SiconosTest, TheThreeSolversAgreeOnALargerLcp) {
   }
 }
 
+TEST(SiconosTest, P1sCountsDoNotMoveWithTheRoundingOfItsInput) {
+  // P1 with its pair rows scaled by 1 + O(1e-14) (ScaledPairs: the same problem, perturbed at
+  // the level of the rounding that BLAS threads bring into the reduction). Before the rigid
+  // basis was canonical and the split rigid rows relaxed (siconos_lcp.h), such perturbations
+  // moved Lemke's pivots and the Newton solvers' iterations and sent some solves onto a ray or
+  // a failed line search: every solve must verify with the unperturbed problem's count.
+  SKIP_WITHOUT_SICONOS();
+  for (const char* n : {"20", "30"}) {
+    const Problem block = MakeProblem("block", {{"n", n}});
+    const auto step_of = [&block](const ContactModel& model) {
+      return StepProblem{&model, ZeroState(model), StepConstraint::FixedLoad(block.load),
+                         block.scales};
+    };
+    for (const char* name : kNames) {
+      auto f = Make(name);
+      const StepProblem step = step_of(*block.model);
+      const StepResult first = f->Solve(step, Start(step, StartKind::kCold));
+      ASSERT_EQ(first.status, Status::kConverged) << name << " n = " << n << ": " << first.message;
+      EXPECT_TRUE(Judge(step, first.point, 1e-8).verified) << name << " n = " << n;
+      for (unsigned seed = 1; seed <= 6; ++seed) {
+        const ScaledPairs model(*block.model,
+                                ScaledPairs::Factors(block.model->num_pairs(), 1e-14, seed));
+        const StepProblem perturbed = step_of(model);
+        const StepResult r = f->Solve(perturbed, Start(perturbed, StartKind::kCold));
+        EXPECT_EQ(r.status, Status::kConverged) << name << " n = " << n << " seed " << seed;
+        EXPECT_TRUE(Judge(perturbed, r.point, 1e-8).verified) << name << " n = " << n;
+        EXPECT_EQ(r.counts.iterations, first.counts.iterations)
+            << name << " n = " << n << " seed " << seed;
+      }
+    }
+  }
+}
+
 TEST(SiconosTest, NewtonWarmStartedAtTheAnswerTakesNoIteration) {
   SKIP_WITHOUT_SICONOS();
   const ComplementarityModel model = RandomLcp(20);
@@ -131,6 +168,23 @@ TEST(SiconosTest, TheIterationLimitIsReportedAsSuch) {
   const StepResult r = f->Solve(step, Start(step, StartKind::kCold));
   EXPECT_EQ(r.status, Status::kLimitReached) << r.message;
   EXPECT_EQ(r.details.at("siconos_info"), "1 iteration limit reached");
+  EXPECT_FALSE(Judge(step, r.point, 1e-8).verified);
+}
+
+TEST(SiconosTest, LemkesRayIsAFailureNotTheLimit) {
+  // w = -z - 1 has no z >= 0 with w >= 0: Lemke's path ends on a ray after a pivot or two,
+  // which Siconos 4.4 reports with info 1, the code of its pivot limit (10000).
+  SKIP_WITHOUT_SICONOS();
+  const ComplementarityModel model =
+      ComplementarityModel::Lcp(Mat(-Mat::Identity(2, 2)), Vec::Constant(2, -1.0));
+  const StepProblem step = FixedLoadStep(model, 0.0, 1.0, 1.0);
+  auto f = Make("siconos-lemke");
+  const StepResult r = f->Solve(step, Start(step, StartKind::kCold));
+  EXPECT_EQ(r.status, Status::kFailed) << r.message;
+  EXPECT_LT(r.counts.iterations, 10);
+  EXPECT_EQ(r.details.at("siconos_info").rfind("1 ray termination", 0), 0U)
+      << r.details.at("siconos_info");
+  EXPECT_NE(r.message.find("below the limit of 10000"), std::string::npos) << r.message;
   EXPECT_FALSE(Judge(step, r.point, 1e-8).verified);
 }
 

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <limits>
+#include <random>
+#include <utility>
 
 #include "model/contact_model.h"
 #include "step/step_problem.h"
@@ -71,6 +73,51 @@ class SpringsAgainstWall final : public ContactModel {
   double k1_, k2_, g0_;
   bool nan_force_ = false;
   Vec load_;
+};
+
+// `base` with each pair's row scaled by its own factor: phi_p -> s_p phi_p, so grad phi -> S grad
+// phi and r_p -> r_p / s_p. The same contact problem (the same displacements, the reactions
+// rescaled): with s = 1 + O(1e-14), a perturbation of the input at the level of its rounding.
+class ScaledPairs final : public ContactModel {
+ public:
+  ScaledPairs(const ContactModel& base, Vec scale) : base_(base), scale_(std::move(scale)) {}
+  // s_p = 1 + size u_p, u_p uniform in [-1, 1) from std::mt19937(seed) (the generator's raw
+  // output: the same sequence on every platform).
+  static Vec Factors(int pairs, double size, unsigned seed) {
+    std::mt19937 generator(seed);
+    Vec scale(pairs);
+    for (int p = 0; p < pairs; ++p) {
+      scale[p] = 1.0 + size * (2.0 * static_cast<double>(generator()) / 4294967296.0 - 1.0);
+    }
+    return scale;
+  }
+  int num_dofs() const override { return base_.num_dofs(); }
+  int num_pairs() const override { return base_.num_pairs(); }
+  bool has_energy() const override { return base_.has_energy(); }
+  bool is_linear() const override { return base_.is_linear(); }
+  double Energy(const Vec& u) const override { return base_.Energy(u); }
+  void InternalForce(const Vec& u, Vec* force) const override { base_.InternalForce(u, force); }
+  void Stiffness(const Vec& u, SpMat* stiffness) const override { base_.Stiffness(u, stiffness); }
+  void InternalForceMagnitudes(const Vec& u, Vec* magnitudes) const override {
+    base_.InternalForceMagnitudes(u, magnitudes);
+  }
+  void Gaps(const Vec& u, Vec* phi) const override {
+    base_.Gaps(u, phi);
+    *phi = phi->cwiseProduct(scale_);
+  }
+  void GapJacobian(const Vec& u, SpMat* jacobian) const override {
+    SpMat g;
+    base_.GapJacobian(u, &g);
+    *jacobian = scale_.asDiagonal() * g;
+  }
+  void GapCurvature(const Vec& u, const Vec& r, SpMat* curvature) const override {
+    base_.GapCurvature(u, Vec(r.cwiseProduct(scale_)), curvature);
+  }
+  const Vec& load_pattern() const override { return base_.load_pattern(); }
+
+ private:
+  const ContactModel& base_;
+  Vec scale_;
 };
 
 // The step of `model` at fixed load `lambda` from the zero state, with scales L, R.

@@ -117,6 +117,7 @@ SiconosLcpOutcome RunSiconosLcp(SiconosLcpSolver solver, const SiconosLcpOptions
       linearComplementarity_driver(problem.get(), outcome.z.data(), outcome.w.data(), o.get());
   outcome.library_output = library_output.Release();
   outcome.iterations = o->iparam[SICONOS_IPARAM_ITER_DONE];
+  outcome.max_iterations = o->iparam[SICONOS_IPARAM_MAX_ITER];
   outcome.error = o->dparam[SICONOS_DPARAM_RESIDU];
   return outcome;
 }
@@ -131,8 +132,9 @@ void RecordSiconosOutcome(SiconosLcpSolver solver, const SiconosLcpOutcome& outc
     result->counts.jacobian_evals = outcome.iterations;
     result->counts.linear_solves = outcome.iterations;
   }
-  // The drivers' codes (LCP_Solvers.h): 0 converged, 1 iteration limit, otherwise a failure
-  // (Lemke: a negative diagonal term; Newton: LAPACK's solve of the direction).
+  // The drivers' codes (LCP_Solvers.h): 0 converged, 1 iteration limit or, for Lemke below
+  // its limit, a ray (siconos_adapter.h), otherwise a failure (Lemke: a negative diagonal term;
+  // Newton: LAPACK's solve of the direction).
   std::string meaning;
   switch (outcome.info) {
     case 0:
@@ -140,8 +142,15 @@ void RecordSiconosOutcome(SiconosLcpSolver solver, const SiconosLcpOutcome& outc
       meaning = "converged";
       break;
     case 1:
-      result->status = Status::kLimitReached;
-      meaning = "iteration limit reached";
+      if (solver == SiconosLcpSolver::kLemke && outcome.iterations < outcome.max_iterations) {
+        result->status = Status::kFailed;
+        meaning = "ray termination (no positive entry in the entering column) after " +
+                  std::to_string(outcome.iterations) + " pivots, below the limit of " +
+                  std::to_string(outcome.max_iterations);
+      } else {
+        result->status = Status::kLimitReached;
+        meaning = "iteration limit reached";
+      }
       break;
     default:
       result->status = Status::kFailed;

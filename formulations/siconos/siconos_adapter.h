@@ -18,6 +18,15 @@
 //                      interrupt. Lemke's limit is its own default, a multiple of the size,
 //                      left as it is: every pivot is needed.
 //   verbosity 0        nothing in the library prints.
+// Status: the driver's info 0 is Status::kConverged; 1 is the iteration limit
+// (Status::kLimitReached), except Lemke's below its pivot limit, a ray termination
+// (Status::kFailed): Siconos 4.4's lcp_lexicolemke ends without an info of its own both when z0
+// leaves the basis and when the entering column has no positive entry (a ray), and the driver's
+// check of the answer turns an end whose error exceeds tol into 1, the code of the limit too.
+// An end at z0's exit has only the pivots' rounding in its error, so below the limit it is the
+// ray (P1's solves up to n = 400 end at errors of 1e-14 or less); the message gives the error.
+// Any other info is a failure (Lemke: a pivoting failure; Newton: LAPACK's solve of the
+// direction).
 // Counts: `iterations` is iparam[ITER_DONE] (Newton iterations, or Lemke's pivots),
 // residual_evals = jacobian_evals = linear_solves = the same count for the Newton solvers (one
 // each per iteration) and, for Lemke, residual_evals = 1 (the pivots are the linear algebra).
@@ -54,9 +63,10 @@ struct SiconosLcpOptions {
 
 // The outcome of one run of the LCP driver.
 struct SiconosLcpOutcome {
-  int info = -1;       // the driver's return code (0: converged)
-  int iterations = 0;  // iparam[SICONOS_IPARAM_ITER_DONE]
-  double error = 0.0;  // dparam[SICONOS_DPARAM_RESIDU]
+  int info = -1;           // the driver's return code (0: converged)
+  int iterations = 0;      // iparam[SICONOS_IPARAM_ITER_DONE]
+  int max_iterations = 0;  // iparam[SICONOS_IPARAM_MAX_ITER], the limit it ran with
+  double error = 0.0;      // dparam[SICONOS_DPARAM_RESIDU]
   Vec z, w;
   std::string library_output;  // what Siconos wrote to stderr during the run
 };

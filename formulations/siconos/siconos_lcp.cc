@@ -1,9 +1,13 @@
 #include "formulations/siconos/siconos_lcp.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <stdexcept>
 
 #include "model/complementarity_model.h"
@@ -223,13 +227,20 @@ void SteppedLcp::BuildEliminated() {
   // Eigenvalues ascending: the rigid ones (c s = 1) are the last `rigid`.
   const int elastic = nc - rigid;
   const Mat v2 = v.leftCols(elastic);
-  rigid_ = v.rightCols(rigid);
+  rigid_ = CanonicalRigidBasis(v.rightCols(rigid));
   const Vec s2 = s_all.head(elastic);
   const Vec one_minus = (1.0 - penalty_ * s2.array()).matrix();
   const Mat m_elastic =
       v2 * (s2.array() / one_minus.array()).matrix().asDiagonal() * v2.transpose();
   const Vec q_elastic = v2 * (v2.transpose() * h).cwiseQuotient(one_minus);
-  const Vec e = -(rigid_.transpose() * h).cwiseQuotient(s_all.tail(rigid));
+  // V1^T (I - c A) = 0 and V1^T A = S1 V1^T with S1 = V1^T A V1 (~ I / c; diagonal only for
+  // eigenvectors, which the canonical basis is not), so (I - c A) g = h - A r gives
+  // V1^T z = e = -S1^-1 V1^T h.
+  const Mat s1 = rigid_.transpose() * a * rigid_;
+  const Vec e = -s1.ldlt().solve(rigid_.transpose() * h);
+  // Both rows of each rigid equality relaxed by delta, so that no solution is degenerate (the
+  // top of the header).
+  relaxation_ = kRigidRelaxation * std::max(1.0, (e / force).lpNorm<Eigen::Infinity>());
   const int n = nc + 2 * rigid;
   m_ = Mat::Zero(n, n);
   q_ = Vec::Zero(n);
@@ -239,8 +250,29 @@ void SteppedLcp::BuildEliminated() {
   m_.block(nc, 0, rigid, nc) = -rigid_.transpose();
   m_.block(nc + rigid, 0, rigid, nc) = rigid_.transpose();
   q_.head(nc) = q_elastic / length;
-  q_.segment(nc, rigid) = e / force;
-  q_.segment(nc + rigid, rigid) = -e / force;
+  q_.segment(nc, rigid) = (e / force).array() + relaxation_;
+  q_.segment(nc + rigid, rigid) = (-e / force).array() + relaxation_;
+}
+
+Mat SteppedLcp::CanonicalRigidBasis(const Mat& v1) {
+  const Eigen::Index rows = v1.rows();
+  const Eigen::Index cols = v1.cols();
+  // Fixed reference vectors: std::mt19937's sequence is the standard's, the same everywhere,
+  // and generic, so that their projections are independent (the rigid gaps of a model need not
+  // be known here, only K and G).
+  std::mt19937 generator(5489U);
+  Mat x(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      x(i, j) = (static_cast<double>(generator()) + 0.5) / 4294967296.0 - 0.5;
+    }
+  }
+  const Eigen::HouseholderQR<Mat> qr(Mat(v1 * (v1.transpose() * x)));
+  Mat basis = qr.householderQ() * Mat::Identity(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    if (qr.matrixQR()(j, j) < 0.0) basis.col(j) = -basis.col(j);
+  }
+  return basis;
 }
 
 Vec SteppedLcp::ZFromPoint(const Vec& du, const Vec& r) const {

@@ -43,6 +43,23 @@
 //    1 is found as > 1/2: c is 1e-3 times the smallest diagonal entry of K on a contact dof, so
 //    the elastic eigenvalues c s2 = c lambda_C / (1 + c lambda_C) of a contact compliance
 //    lambda_C stay far below 1/2).
+//    The eigenvalue 1 is multiple (m = 3 for P1), so any orthonormal basis of the rigid gaps is
+//    an eigenbasis, and the eigensolver's is chosen by the rounding of A (the BLAS threads of
+//    the sparse solves move it), while Lemke's pivots depend on the basis: V1 is taken
+//    canonical instead (CanonicalRigidBasis: fixed vectors projected onto the rigid space,
+//    orthonormalised in order), which depends on the space only, and e = -S1^-1 V1^T h with
+//    S1 = V1^T A V1 (~ I / c), the form that holds for any basis of the space.
+//    As two rows, the equality is degenerate: with Lemke's covering vector d = 1 the rows of
+//    a+ and a- add up to w+ + w- = 2 z0, so both are 0 at every solution, z0's row ties exactly
+//    with one of them at Lemke's last pivot (a tie that the last bit decides: if the w row
+//    leaves, z0 stays basic and the path can end on a ray), and a+, a- solve for a = a+ - a-
+//    only (the Newton solvers' singular matrices). Both rows are therefore relaxed by
+//        delta = 1e-12 max(1, |e / R|_inf):   e / R + delta  and  -e / R + delta,
+//    so that |V1^T z^ - e / R| <= delta: w+ + w- = 2 delta > 0 at every solution, z0 leaves
+//    alone, and at most one of a+, a- is positive (a is unique). The answer balances the load
+//    along the rigid modes to delta R in each component of V1^T r, 1e-12 of the reactions'
+//    scale; the verdict judges the recovered point on the step's own rows (29)-(30), not on
+//    this LCP, so a relaxation that mattered would show there (at 1e-8).
 #pragma once
 
 #include <memory>
@@ -73,6 +90,12 @@ class SteppedLcp {
   static const char* KindName(Kind kind);
   int size() const { return static_cast<int>(q_.size()); }
   int num_rigid_modes() const { return static_cast<int>(rigid_.cols()); }
+  // V1 (nc x m), the basis of the rigid gaps the LCP is written in (empty without rigid modes).
+  const Mat& rigid_basis() const { return rigid_; }
+  // delta, by which both rows of each rigid equality are relaxed (0 without rigid modes).
+  double rigid_relaxation() const { return relaxation_; }
+  // delta = kRigidRelaxation max(1, |e / R|_inf).
+  static constexpr double kRigidRelaxation = 1e-12;
   // Column-major n x n, the storage Siconos's dense NumericsMatrix takes.
   const Mat& m() const { return m_; }
   const Vec& q() const { return q_; }
@@ -82,6 +105,14 @@ class SteppedLcp {
   Vec ZFromPoint(const Vec& du, const Vec& r) const;
   // The step's point (physical units) from z^: du, g from the model at u^k + du, r, dlambda.
   StepPoint PointFromZ(const Vec& z) const;
+
+  // The basis of the rigid gaps given any orthonormal basis `v1` (nc x m) of them: the
+  // projections v1 v1^T X of fixed reference vectors X (nc x m, pseudo-random from a fixed seed),
+  // orthonormalised in order by QR with R's diagonal positive. It depends on the span of v1 only
+  // (v1 Q gives the same for any orthogonal Q), and moves with it as little as the projector
+  // does: a perturbation of A moves the eigensolver's basis of a multiple eigenvalue by its size
+  // over the eigenvalues' spread, this one by its size over the gap to the elastic ones.
+  static Mat CanonicalRigidBasis(const Mat& v1);
 
  private:
   void BuildAsGiven();
@@ -99,6 +130,7 @@ class SteppedLcp {
   double penalty_ = 0.0;
   Vec rhs_;
   Mat rigid_;
+  double relaxation_ = 0.0;
 };
 
 }  // namespace cb

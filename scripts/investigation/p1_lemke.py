@@ -15,8 +15,9 @@ lexicographic rule only among ratios that are exactly equal) on:
      V1^T z^ = e / R relaxed by delta on both sides or not;
 and, for comparison, Lemke with z0 leaving whenever its row ties (to 1e-9) with the minimum
 ratio. Counts pivots and says whether each ended at a solution (info 0), on a ray (2: no
-positive entry in the entering column; Siconos reports it as info 1, the code of its pivot
-limit) or at the limit. Needs numpy. issue 25, docs/findings.md ("What moves with rounding").
+positive entry in the entering column; Siconos's driver reports it as info 1, the code of its
+pivot limit, from its check of the answer's error) or at the limit. Needs numpy. issue 25,
+docs/findings.md ("What moves with rounding").
 
 Usage: p1_lemke.py [N]   (N elements per side, default 50; N = 50 takes ~10 s)
 """
