@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fixture_start.h"
 #include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/petsc_dist/petsc_dist.h"
@@ -19,15 +20,7 @@ namespace {
 
 using fixtures::FindFixture;
 using fixtures::Fixture;
-
-StartPoint StartOf(const Fixture& f, StartKind kind) {
-  StartPoint start;
-  start.kind = kind;
-  start.du = Vec::Zero(f.problem.model->num_dofs());
-  start.dlambda = f.constraint.target - f.base.lambda;
-  start.r = f.base.r;
-  return start;
-}
+using fixtures::StartFor;
 
 // The line-search factors of the iterations from the first on (the distributed history also
 // records iteration 0, the start).
@@ -45,8 +38,8 @@ TEST(DistLineSearchTest, TheDistributedNewtonSearchesAsTheSerialOne) {
   const StepProblem step = f.Step();
   for (const StartKind kind : {StartKind::kCold, StartKind::kWarm}) {
     SCOPED_TRACE(ToString(kind));
-    const StepResult serial = MakeImplicitFb({})->Solve(step, StartOf(f, kind));
-    const StepResult dist = MakeDistImplicitFb({})->Solve(step, StartOf(f, kind));
+    const StepResult serial = MakeImplicitFb({})->Solve(step, StartFor(f, kind));
+    const StepResult dist = MakeDistImplicitFb({})->Solve(step, StartFor(f, kind));
     ASSERT_EQ(serial.status, Status::kConverged) << serial.message;
     ASSERT_EQ(dist.status, Status::kConverged) << dist.message;
     EXPECT_TRUE(Judge(step, dist.point, 1e-8).verified);
@@ -65,7 +58,7 @@ TEST(DistLineSearchTest, ALineSearchTheUserNamesIsPetscsOwn) {
   FormulationConfig config;
   config.options["petsc_options"] = "-snes_linesearch_type basic";
   const StepResult full_steps =
-      MakeDistImplicitFb(config)->Solve(step, StartOf(f, StartKind::kCold));
+      MakeDistImplicitFb(config)->Solve(step, StartFor(f, StartKind::kCold));
   // PETSc's `basic` takes every full step: no factor below 1, whatever it makes of the solve.
   for (const double factor : Factors(full_steps)) EXPECT_EQ(factor, 1.0);
 }

@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 
+#include "fixture_start.h"
 #include "fixtures.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "verdict/verdict.h"
@@ -16,6 +17,7 @@ namespace {
 
 using fixtures::FindFixture;
 using fixtures::Fixture;
+using fixtures::StartFor;
 
 FormulationConfig WithLinear(const std::string& linear) {
   FormulationConfig config;
@@ -23,21 +25,14 @@ FormulationConfig WithLinear(const std::string& linear) {
   return config;
 }
 
-StartPoint ColdStart(const Fixture& f) {
-  StartPoint start;
-  start.kind = StartKind::kCold;
-  start.du = Vec::Zero(f.problem.model->num_dofs());
-  start.dlambda = f.constraint.target - f.base.lambda;
-  start.r = f.base.r;
-  return start;
-}
-
 TEST(DistLinearSolveTest, AmgGivesTheDirectSolvesAnswerOnP1) {
   if (!DistAvailable()) GTEST_SKIP() << "built without PETSc";
   const Fixture& f = FindFixture("block_n10");
   const StepProblem step = f.Step();
-  const StepResult amg = MakeDistActiveSet(WithLinear("amg"))->Solve(step, ColdStart(f));
-  const StepResult direct = MakeDistActiveSet(WithLinear("direct"))->Solve(step, ColdStart(f));
+  const StepResult amg =
+      MakeDistActiveSet(WithLinear("amg"))->Solve(step, StartFor(f, StartKind::kCold));
+  const StepResult direct =
+      MakeDistActiveSet(WithLinear("direct"))->Solve(step, StartFor(f, StartKind::kCold));
   ASSERT_EQ(amg.status, Status::kConverged) << amg.message;
   EXPECT_TRUE(Judge(step, amg.point, 1e-8).verified);
   EXPECT_TRUE(f.CheckSolution(
@@ -64,8 +59,9 @@ TEST(DistLinearSolveTest, TheAugmentedSplitNeedsFewerKrylovIterationsThanThePlai
       " -fieldsplit_0_pc_type gamg -fieldsplit_0_mg_coarse_sub_pc_type svd"
       " -fieldsplit_0_mg_coarse_sub_pc_svd_zero_sing 1e-8 -fieldsplit_1_ksp_type preonly"
       " -fieldsplit_1_pc_type lu -fieldsplit_1_pc_factor_mat_solver_type mumps";
-  const StepResult split = MakeDistActiveSet(plain)->Solve(step, ColdStart(f));
-  const StepResult augmented = MakeDistActiveSet(WithLinear("amg"))->Solve(step, ColdStart(f));
+  const StepResult split = MakeDistActiveSet(plain)->Solve(step, StartFor(f, StartKind::kCold));
+  const StepResult augmented =
+      MakeDistActiveSet(WithLinear("amg"))->Solve(step, StartFor(f, StartKind::kCold));
   ASSERT_EQ(split.status, Status::kConverged) << split.message;
   ASSERT_EQ(augmented.status, Status::kConverged) << augmented.message;
   EXPECT_TRUE(fixtures::RelativelyClose(augmented.point.du, split.point.du, 1e-6,

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fixture_start.h"
 #include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/registry.h"
@@ -28,6 +29,7 @@ namespace {
 using fixtures::FindFixture;
 using fixtures::Fixture;
 using fixtures::RelativelyClose;
+using fixtures::StartFor;
 
 struct Case {
   std::string formulation;
@@ -79,15 +81,6 @@ PathSummary TracePath(const Fixture& f, Formulation& formulation, Collector* c) 
   const StepProblem kink{f.problem.model.get(), f.base, StepConstraint::Kink(0), f.problem.scales};
   o.locate_kinks = f.problem.model->num_pairs() > 0 && formulation.Accepts(kink);
   return TraceArcLengthPath(*f.problem.model, f.problem.scales, f.base, formulation, o, c);
-}
-
-StartPoint StartFor(const Fixture& f, StartKind kind) {
-  StartPoint start;
-  start.kind = kind;
-  start.du = Vec::Zero(f.problem.model->num_dofs());
-  start.dlambda = f.constraint.target - f.base.lambda;
-  start.r = f.base.r;
-  return start;
 }
 
 // implicit-fb's answer (warm start), once per fixture: the final state of a path.
