@@ -350,6 +350,17 @@ int Run(const RunArguments& a, RunJson* record) {
   });
 }
 
+// Says on standard error that some solves of a run gave another answer when repeated: their
+// times are not those of one solve (the first answer is still the one judged and recorded).
+void WarnOfDisagreements(const RunLabel& label, const RunRecorder& recorder) {
+  if (recorder.repeat_disagreements() == 0) return;
+  std::fprintf(stderr,
+               "warning: %s %s: %d solves gave another answer when repeated (first: %s); the "
+               "first answer is judged, repeats_agree = false in steps.csv\n",
+               label.formulation.c_str(), label.start.c_str(), recorder.repeat_disagreements(),
+               recorder.first_disagreement().c_str());
+}
+
 // The comparison itself, in its claimed output directory.
 int CompareRuns(const RunArguments& a, const Problem& problem,
                 const std::vector<std::unique_ptr<Formulation>>& formulations,
@@ -408,6 +419,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
+      run_options.solve_repeats = a.repeat;
       const PathSummary s =
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
@@ -419,7 +431,9 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
           {formulation->name(), ToString(start),
            std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
            recorder.iterations(), recorder.solve_times_s()});
+      WarnOfDisagreements(label, recorder);
       ++record->runs;
+      record->repeat_disagreements += recorder.repeat_disagreements();
       record->attempts += recorder.attempts();
       record->accepted_steps += recorder.accepted();
       if (s.status == Status::kStoppedByCaller) {
@@ -429,6 +443,11 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
   *reason = "every formulation was run (runs.csv holds each one's outcome)";
+  if (record->repeat_disagreements > 0) {
+    *reason += "; " + std::to_string(record->repeat_disagreements) +
+               " solves' repetitions disagreed with their first answer (repeats_agree in "
+               "steps.csv)";
+  }
   std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(table).c_str(), a.out.c_str());
   return kExitOk;
 }
@@ -458,6 +477,7 @@ int Compare(const RunArguments& a, RunJson* record) {
   for (const auto& f : formulations) record->formulations.push_back(f->name());
   for (StartKind start : a.starts) record->starts.push_back(ToString(start));
   record->mode = a.mode;
+  record->repeat = a.repeat;
   if (a.mode == "replay") record->reference = reference->name();
   return InOutputDirectory(a, record, [&](std::string* reason) {
     return CompareRuns(a, problem, formulations, reference.get(), record, reason);

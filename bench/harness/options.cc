@@ -284,6 +284,15 @@ std::vector<Option> MakeOptions() {
       {"--time-limit", "SECONDS", kPathCommands, Need::kOptional, false,
        "the time limit of each solve (default: none)", nullptr,
        [](O o, S v, A* a) { a->time_limit = PositiveNumber(o, v); }},
+      {"--repeat", "N", kCompare, Need::kOptional, false,
+       "solve every step N times from the same start (default 1): steps.csv records the first "
+       "answer, judged by the verdict, with the median time of the N solves and their min and "
+       "max; a repetition whose answer differs is flagged (repeats_agree, a warning)",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->repeat = ParseInteger(o, v);
+         if (a->repeat <= 0) Refuse(o, "must be a positive integer, got '" + v + "'");
+       }},
       {"--set", "KEY=VALUE", kProblemCommands, Need::kOptional, true,
        "change a problem parameter (`contactbench list` shows each problem's); a problem "
        "file's keys are length_scale, force_scale and load or arc_length, steps",

@@ -79,6 +79,7 @@ struct RunArguments {
   BifurcationMode bifurcations = kDefaultBifurcationMode;
   int save_every = 0;
   double time_limit = 0.0;
+  int repeat = 1;  // compare --repeat: every timed solve done this many times
   std::map<std::string, std::string> settings;
   std::string operand;           // the command's operand (plot: the run's directory)
   std::optional<int> plot_step;  // plot --step

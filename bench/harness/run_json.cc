@@ -46,6 +46,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
   if (run.command == "compare") {
     j["mode"] = run.mode;
     j["reference"] = OrNull(run.reference);
+    j["repeat"] = run.repeat;
   }
   j["starts"] = run.starts;
   j["tolerance"] = run.tolerance;
@@ -57,7 +58,8 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
   j["counts"] = {{"runs", run.runs},
                  {"attempts", run.attempts},
                  {"accepted_steps", run.accepted_steps},
-                 {"kinks", run.kinks}};
+                 {"kinks", run.kinks},
+                 {"repeat_disagreements", run.repeat_disagreements}};
   j["wall_time_s"] = wall;
   return j.dump(2) + "\n";
 }

@@ -24,6 +24,7 @@ struct RunJson {
   std::vector<std::string> starts;
   double tolerance = 0.0;
   double time_limit_s = 0.0;  // 0: none
+  int repeat = 1;             // compare --repeat
   std::chrono::system_clock::time_point started = std::chrono::system_clock::now();
   std::chrono::steady_clock::time_point started_steady = std::chrono::steady_clock::now();
   // Counts over every run of the command (a comparison sums its runs).
@@ -31,6 +32,7 @@ struct RunJson {
   int attempts = 0;
   int accepted_steps = 0;
   int kinks = 0;
+  int repeat_disagreements = 0;  // solves whose repetitions disagreed with the first answer
 };
 
 // The JSON text of `run`, ended with `exit_status` for `reason`.
