@@ -26,6 +26,7 @@
 #include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/records_doc.h"
+#include "harness/run_inputs.h"
 #include "harness/run_json.h"
 #include "harness/snapshots.h"
 #include "harness/suggest.h"
@@ -209,6 +210,7 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   std::string reason;
   int status = kExitFailure;
   try {
+    if (!a.problem_file.empty()) record->inputs = CopyProblemInputs(a.problem_file, a.out);
     status = body(&reason);
   } catch (const UsageError& e) {
     WriteRunJson(a.out, *record, kExitBadArguments, e.what());
