@@ -34,6 +34,7 @@ enum Command : unsigned {
   kExport = 1u << 3,
   kSchema = 1u << 4,
   kPlot = 1u << 5,
+  kRerun = 1u << 6,
 };
 
 struct CommandInfo {
@@ -61,6 +62,7 @@ struct RunArguments {
   std::string reference = "implicit-fb";  // compare
   std::string out;
   bool overwrite = false;     // run, compare: replace an earlier run's records in `out`
+  bool force = false;         // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
