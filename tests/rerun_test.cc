@@ -55,6 +55,15 @@ CliOutcome DiffRecords(const fs::path& a, const fs::path& b) {
   return out;
 }
 
+// Reruns DIR/a into DIR/b: it must succeed and leave the same records (times aside).
+void ExpectRerunReproduces(const fs::path& dir) {
+  const auto o =
+      RunContactbench("rerun " + (dir / "a").string() + " --out " + (dir / "b").string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto diff = DiffRecords(dir / "a", dir / "b");
+  EXPECT_EQ(diff.status, 0) << diff.output;
+}
+
 // FIPS 180-4 test vectors (NIST's "SHA-256 examples"): one block, two blocks, many blocks.
 TEST(Sha256Test, MatchesTheStandardsExamples) {
   EXPECT_EQ(Sha256Hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
@@ -109,11 +118,7 @@ TEST(RerunTest, ARerunOfARunWithAMeshReproducesItsRecords) {
                       " --formulation implicit-fb --save-every 1 --out " + (dir / "a").string())
           .status,
       0);
-  const auto o =
-      RunContactbench("rerun " + (dir / "a").string() + " --out " + (dir / "b").string());
-  ASSERT_EQ(o.status, 0) << o.output;
-  const auto diff = DiffRecords(dir / "a", dir / "b");
-  EXPECT_EQ(diff.status, 0) << diff.output;
+  ExpectRerunReproduces(dir);
   const auto rerun = RunJson(dir / "b");
   EXPECT_EQ(rerun.at("rerun_of").get<std::string>(), (dir / "a").string());
   // It read the copy, not the original.
@@ -128,11 +133,7 @@ TEST(RerunTest, ARerunOfAComparisonReproducesItsRecords) {
                             (dir / "a").string())
                 .status,
             0);
-  const auto o =
-      RunContactbench("rerun " + (dir / "a").string() + " --out " + (dir / "b").string());
-  ASSERT_EQ(o.status, 0) << o.output;
-  const auto diff = DiffRecords(dir / "a", dir / "b");
-  EXPECT_EQ(diff.status, 0) << diff.output;
+  ExpectRerunReproduces(dir);
   // A changed record is seen: the comparison is not vacuous.
   std::ofstream(dir / "b" / "runs.csv", std::ios::app) << "extra,row\n";
   EXPECT_EQ(DiffRecords(dir / "a", dir / "b").status, 1);
@@ -175,6 +176,32 @@ TEST(RerunTest, ARerunIsRefusedWhenACopiedInputChanged) {
   EXPECT_NE(refused.output.find("the copy problem/truss-2d-bar-wall.json is not the file the run "
                                 "read"),
             std::string::npos)
+      << refused.output;
+}
+
+// A mesh named outside the problem file's directory is copied by its name, and the copied
+// problem file would still read the original: the rerun says so rather than pretend.
+TEST(RerunTest, AMeshNamedOutsideItsProblemFilesDirectoryIsCopiedButTheRerunIsRefused) {
+  const auto dir = TempDir("outside");
+  fs::create_directories(dir / "problems");
+  fs::copy_file(SourceRoot() / "examples" / "q4-block-gmsh.msh", dir / "block.msh");
+  std::string text = ReadBytes(SourceRoot() / "examples" / "q4-block-gmsh.json");
+  const std::string named = "\"q4-block-gmsh.msh\"";
+  ASSERT_NE(text.find(named), std::string::npos);
+  text.replace(text.find(named), named.size(), "\"../block.msh\"");
+  std::ofstream(dir / "problems" / "p.json") << text;
+  const auto run = RunContactbench("run --problem-file " + (dir / "problems" / "p.json").string() +
+                                   " --formulation implicit-fb --out " + (dir / "a").string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto recorded = RunJson(dir / "a");
+  const auto& mesh = recorded.at("inputs").at(1);
+  EXPECT_EQ(mesh.at("copy"), "problem/block.msh");
+  EXPECT_FALSE(mesh.at("found_by_copy").get<bool>());
+  EXPECT_EQ(ReadBytes(dir / "a" / "problem" / "block.msh"), ReadBytes(dir / "block.msh"));
+  const auto refused =
+      RunContactbench("rerun " + (dir / "a").string() + " --out " + (dir / "b").string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("block.msh' outside its directory"), std::string::npos)
       << refused.output;
 }
 

@@ -63,7 +63,8 @@ std::vector<CopiedInput> CopyProblemInputs(const std::string& problem_file,
     bool found_by_copy = true;
     const fs::path copy = MeshCopy(named, &found_by_copy);
     std::string bytes;
-    copies.push_back(Copy("mesh", source.parent_path() / named, copy, out, found_by_copy, &bytes));
+    copies.push_back(Copy("mesh", (source.parent_path() / named).lexically_normal(), copy, out,
+                          found_by_copy, &bytes));
   }
   return copies;
 }
