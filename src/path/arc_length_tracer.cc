@@ -7,8 +7,12 @@
 #include "path/stability.h"
 #include "path/step_solve.h"
 #include "path/turn_back.h"
-
 namespace cb {
+namespace {
+
+constexpr char kKinkNotLocated[] = "; not accepted: a kink within the step was not located";
+
+}  // namespace
 
 ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales& scales,
                                  Formulation& formulation, const PathOptions& options,
@@ -131,16 +135,20 @@ void ArcLengthTracer::KeepBehind(const StepAttempt& attempt) {
   at_.behind.resize(keep);
 }
 
-// Reports every rejected attempt; the accepted one is reported by Accept, after its kinks. A
-// verified step off a bifurcation point within which a kink cannot be located is cut back too
-// while cut-backs remain (a shorter step brackets the kink more closely, and a failed switch
-// leaves the path on its branch); the last one is accepted with its kink recorded as not
-// located, and the path then ends as failed, as any step with such a kink does.
+// Reports every rejected attempt, in attempt order, once the step is decided; the accepted one
+// is reported by Accept, after its kinks. A verified attempt within which a kink cannot be
+// located is cut back too (a shorter step brackets the kink more closely, and on P2's branch D
+// at theta 0.5 that locates it); when no cut-back is accepted, the first such attempt is taken
+// with its kink recorded as not located, and the path then ends as failed once its steps are
+// done.
 ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const StepLeg& leg,
                                                               StepAttempt* attempt,
                                                               LocatedKinks* kinks) {
   const int per_theta = leg.predictions_per_arc_length();
   const int attempts = per_theta * (options_.max_cutbacks + 1);
+  std::vector<StepAttempt> rejected;
+  std::optional<StepAttempt> unlocated;  // the first verified attempt with a kink not located
+  LocatedKinks unlocated_kinks;
   for (int index = 0; index < attempts; ++index) {
     *attempt = Attempt(step, index, leg);
     if (attempt->result.status == Status::kStoppedByCaller) {
@@ -148,21 +156,53 @@ ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const St
       // happens to pass the verdict: the path stops before the step (the records and the
       // summary's accepted_steps agree; tests/interrupt_test.cc).
       attempt->accepted = false;
-      observer_.OnAttempt(*attempt);
+      rejected.push_back(*attempt);
+      ReportRejected(std::move(rejected), std::move(unlocated));
       return Outcome::kStoppedByCaller;
     }
     if (attempt->accepted) {
-      *kinks = LocateKinks(leg, *attempt);
-      if (kinks->of_step.not_located == 0 || !leg.switches_branch() || index + 1 == attempts) {
+      LocatedKinks located = LocateKinks(leg, *attempt);
+      if (located.of_step.not_located == 0) {
+        *kinks = std::move(located);
+        ReportRejected(std::move(rejected), std::move(unlocated));
         return Outcome::kAccepted;
       }
       attempt->accepted = false;
-      attempt->result.message += "; not accepted: a kink within the step was not located";
+      if (!unlocated) {
+        unlocated = *attempt;
+        unlocated_kinks = std::move(located);
+        if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
+        continue;
+      }
+      attempt->result.message += kKinkNotLocated;
     }
-    observer_.OnAttempt(*attempt);
+    rejected.push_back(*attempt);
     if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
   }
+  if (unlocated) {
+    *attempt = std::move(*unlocated);
+    attempt->accepted = true;
+    *kinks = std::move(unlocated_kinks);
+    next_.theta = attempt->arc_length;
+    ReportRejected(std::move(rejected), std::nullopt);
+    return Outcome::kAccepted;
+  }
+  ReportRejected(std::move(rejected), std::nullopt);
   return Outcome::kRejected;
+}
+
+// The rejected attempts of a step, with the attempt held back for its kink not located when a
+// later one was taken, in attempt order.
+void ArcLengthTracer::ReportRejected(std::vector<StepAttempt> rejected,
+                                     std::optional<StepAttempt> held) {
+  if (held) {
+    held->result.message += kKinkNotLocated;
+    rejected.push_back(std::move(*held));
+  }
+  std::stable_sort(
+      rejected.begin(), rejected.end(),
+      [](const StepAttempt& a, const StepAttempt& b) { return a.attempt < b.attempt; });
+  for (const StepAttempt& a : rejected) observer_.OnAttempt(a);
 }
 
 StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {

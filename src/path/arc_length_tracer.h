@@ -70,6 +70,7 @@ class ArcLengthTracer {
 
   Outcome AttemptWithCutbacks(int step, const StepLeg& leg, StepAttempt* attempt,
                               LocatedKinks* kinks);
+  void ReportRejected(std::vector<StepAttempt> rejected, std::optional<StepAttempt> held);
   StepAttempt Attempt(int step, int index, const StepLeg& leg);
   void AbandonBranchSwitch();
   bool StepOntoKinkAhead(int step, const StepLeg& leg, int attempts);
