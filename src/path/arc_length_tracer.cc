@@ -4,9 +4,11 @@
 #include <string>
 #include <utility>
 
+#include "path/corner_prediction.h"
 #include "path/stability.h"
 #include "path/step_solve.h"
 #include "path/turn_back.h"
+
 namespace cb {
 namespace {
 
@@ -209,9 +211,13 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   const State& base = leg.origin().state;
   const double theta = next_.theta;
   StepProblem problem{&model_, base, leg.Constraint(index, theta, options_.lambda_weight), scales_};
-  Increment prediction = leg.Predict(index, theta);
   StartPoint start;
   start.kind = options_.start;
+  Increment prediction = leg.Predict(index, theta);
+  if (std::optional<Increment> bent = BentAtContactChange(leg, prediction)) {
+    prediction = std::move(*bent);
+    start.across_contact_change = true;
+  }
   start.du = std::move(prediction.du);
   start.dlambda = prediction.dlambda;
   start.r = base.r;  // (40)
@@ -230,11 +236,21 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   }
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
+  attempt.across_contact_change = start.across_contact_change;
   RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
   ++summary_.attempts;
   attempt.reversed = leg.Reversed(attempt.result.point, theta);
   attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
   return attempt;
+}
+
+// The corner prediction (corner_prediction.h) of a step along the branch, when kinks are
+// located and the path has a state behind it to extrapolate the switching functions from.
+std::optional<Increment> ArcLengthTracer::BentAtContactChange(const StepLeg& leg,
+                                                              const Increment& prediction) const {
+  if (leg.switches_branch() || !options_.locate_kinks || at_.behind.empty()) return std::nullopt;
+  return CornerPrediction(model_, scales_, at_.behind.front(), leg.origin().state, prediction,
+                          options_.lambda_weight);
 }
 
 // Every attempt on the planes off the bifurcation point failed the verdict: say so, and go on along

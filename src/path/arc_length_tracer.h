@@ -72,6 +72,8 @@ class ArcLengthTracer {
                               LocatedKinks* kinks);
   void ReportRejected(std::vector<StepAttempt> rejected, std::optional<StepAttempt> held);
   StepAttempt Attempt(int step, int index, const StepLeg& leg);
+  std::optional<Increment> BentAtContactChange(const StepLeg& leg,
+                                               const Increment& prediction) const;
   void AbandonBranchSwitch();
   bool StepOntoKinkAhead(int step, const StepLeg& leg, int attempts);
   void EnterNewBranch();
