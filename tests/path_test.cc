@@ -251,6 +251,27 @@ TEST(PathTest, AKinkAtTheLoadMinimumIsPassedAndLeftAlongTheFloor) {
   EXPECT_NEAR(t.h + s.final_state.u[p.control_dof], floor, 1e-9);
 }
 
+// The report's P2 and P3 traced whole with Newton (the report's solver): every step within 12
+// iterations (the paths issue's bound). Before the corner prediction 13 steps of P3 took 13-50,
+// all across a closing pair (docs/findings.md, "Steps across a contact change").
+TEST(PathTest, EveryStepOfTheReportsArchPathsTakesAtMostTwelveNewtonIterations) {
+  for (const char* name : {"arch-flat", "arch-curved"}) {
+    const Problem p = MakeProblem(name);
+    ImplicitFb f;
+    Collector c;
+    PathOptions o;
+    o.arc_length = p.arc_length;
+    o.max_steps = p.steps;
+    o.bifurcations = BifurcationMode::kSwitch;
+    const PathSummary s = TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), f, o, &c);
+    ASSERT_EQ(s.status, Status::kConverged) << name << ": " << s.message;
+    ASSERT_EQ(s.accepted_steps, p.steps) << name;
+    for (const StepAttempt& a : c.Accepted()) {
+      EXPECT_LE(a.result.counts.iterations, 12) << name << ", step " << a.step;
+    }
+  }
+}
+
 TEST(PathTest, TwoBarOntoAFloorHasAKinkWhereTheClosedFormSaysSo) {
   const Problem p = MakeProblem("two-bar-obstacle");
   const fixtures::TwoBarClosedForm t = TwoBarOf(p);
