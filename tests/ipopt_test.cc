@@ -494,11 +494,12 @@ TEST(IpoptTest, MpccScholtesColdOnTheArchFollowsThePath) {
             1e-6 * last.u.lpNorm<Eigen::Infinity>());
 }
 
-// The steep, soft two-bar truss meets its floor where the load is at its minimum: no MPCC step
-// crosses that corner (the sphere (33) cuts the floor below the contact load too, and Ipopt
-// goes there), so the path steps onto the kink ahead with (53) and leaves it along the floor
-// (kink_ahead.h): one kink, where the closed form puts it, and the load rising on the floor.
-TEST(IpoptTest, MpccStepsOntoAKinkAtTheLoadMinimum) {
+// The steep, soft two-bar truss meets its floor where the load is at its minimum. From the
+// straight prediction no MPCC step crossed that corner (the sphere (33) cuts the floor below
+// the contact load too, and Ipopt went there); the corner prediction (corner_prediction.h)
+// starts it on the floor: one kink, where the closed form puts it, and the load rising on the
+// floor.
+TEST(IpoptTest, MpccPassesAKinkAtTheLoadMinimum) {
   SKIP_WITHOUT_IPOPT();
   const Problem p = MakeProblem(
       "two-bar-obstacle", {{"height", "1"}, {"floor_height", "0.4"}, {"axial_stiffness", "1"}});
