@@ -46,6 +46,7 @@ class ArcLengthTracer {
     Increment heading;
     int branch = 0;
     std::deque<State> behind;
+    bool behind_reaches_start = true;  // `behind` ends at the path's first state
     int on_kink = -1;  // the pair whose kink the state is, after a step onto a kink ahead
   };
 
