@@ -49,7 +49,7 @@ def _run(results_dir, *parts):
     if not os.path.isdir(d):
         return None
     files = ["steps", "iterations", "kinks", "critical", "snapshots", "snapshot_contacts",
-             "cells", "parameters"]
+             "cells", "parameters", "rescored"]
     run = {f: _read(os.path.join(d, f + ".csv")) for f in files} | {"dir": d}
     path = os.path.join(d, "parameters.csv")
     if os.path.exists(path):  # values as written ("50", not 50.0)

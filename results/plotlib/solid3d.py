@@ -22,6 +22,7 @@ import glob
 import math
 import os
 import re
+import shutil
 
 import numpy as np
 import pandas as pd
@@ -138,6 +139,36 @@ def hertz_table(results_dir):
     table["rate_a"] = observed_rates(list(table["n"]), list(table["error_a"]))
     table["rate_p0"] = observed_rates(list(table["n"]), list(table["error_p0"]))
     return table
+
+
+# --- the thinned records -----------------------------------------------------------------------
+
+# What the section reads: of a hertz-3d mesh, its parameters, steps, contacts and the nodes in
+# contact (their coordinates; the states, cells and VTK files are not read); of plate-3d,
+# everything but the VTK files.
+HERTZ_KEPT_FILES = ("parameters.csv", "steps.csv", "contacts.csv", "solution.csv", "run.json",
+                    "kinks.csv", "critical.csv")
+
+
+def _remove(path):
+    shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+
+
+def thin_records(results_dir):
+    """Rewrites the records of scripts/run_solid3d.sh in place to what the section reads (a
+    hertz-3d mesh's solution.csv: the rows of the nodes in contacts.csv, as recorded)."""
+    for run_dir in glob.glob(os.path.join(results_dir, "solid3d", "hertz", "n*")):
+        path = os.path.join(run_dir, "solution.csv")
+        if os.path.isfile(path) and os.path.isfile(os.path.join(run_dir, "contacts.csv")):
+            nodes = set(pd.read_csv(os.path.join(run_dir, "contacts.csv"), dtype=str)["node"])
+            text = pd.read_csv(path, dtype=str, keep_default_na=False)
+            text[text["node"].isin(nodes)].to_csv(path, index=False)
+        for name in os.listdir(run_dir):
+            if name not in HERTZ_KEPT_FILES:
+                _remove(os.path.join(run_dir, name))
+    vtk = os.path.join(results_dir, "solid3d", "plate-3d", "vtk")
+    if os.path.isdir(vtk):
+        _remove(vtk)
 
 
 # --- figures -------------------------------------------------------------------------------
