@@ -22,10 +22,10 @@ sys.path.insert(0, RESULTS)
 from plotlib import reproduction  # noqa: E402
 
 P2 = os.path.join(RESULTS, "arch-flat", "newton")
-# The path driver's message when every attempt off C fails (src/path/, recorded in
-# critical.csv's message column).
-FAILED = ("the branch switch failed: every attempt along the null vector returned to the "
-          "branch already traced or failed the verdict; the path goes on along it")
+# The path driver's message when every attempt off C fails (ArcLengthTracer::AbandonBranchSwitch,
+# src/path/arc_length_tracer.cc; critical.csv's message column).
+FAILED = ("the branch switch failed: every attempt on the planes orthogonal to the null vector "
+          "failed the verdict; the path goes on along its branch")
 
 
 def copy_records(dest):
