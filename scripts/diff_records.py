@@ -33,7 +33,7 @@ import invariance  # noqa: E402  (the one comparison of invariants, beside this 
 # HISTOGRAM_TOLERANCE_STEPS and HISTOGRAM_TOLERANCE_SHARE of the path's steps; a fixed-load
 # solve's iterations may differ by FIXED_ITERATIONS_TOLERANCE. Chosen from the invariance check's
 # perturbations, which stand in for another CPU's BLAS kernels (docs/findings.md, "Reproduction
-# check": two BLAS threads move no step; another sparse factorisation up to 1.3% of a path's
+# check": two BLAS threads move no step; another sparse factorisation up to 0.56% of a path's
 # steps where the invariants hold, and P1's eta case 3 by up to 4 iterations).
 HISTOGRAM_TOLERANCE_STEPS = 2
 HISTOGRAM_TOLERANCE_SHARE = 0.01
