@@ -71,6 +71,12 @@ class Rates(unittest.TestCase):
     def test_a_zero_error_has_no_rate(self):
         self.assertTrue(math.isnan(solid3d.observed_rates([4, 8], [0.1, 0.0])[1]))
 
+    def test_where_the_error_grows_is_read_from_the_errors(self):
+        # |e|: 0.1, 0.05, 0.06 (grows 16 -> 24), -0.02, 0.03 (grows 32 -> 40); signs aside.
+        n, e = [8, 16, 24, 32, 40], [0.1, -0.05, 0.06, -0.02, 0.03]
+        self.assertEqual(solid3d.error_growth(n, e), [(16, 24), (32, 40)])
+        self.assertEqual(solid3d.error_growth(n, [0.1, 0.05, -0.02, 0.01, 0.001]), [])
+
 
 def contactbench(*args):
     subprocess.run([BINARY, "run", "--formulation", "implicit-fb", *args], check=True,
