@@ -10,26 +10,35 @@
 # what moved and why. The comparison sets and the benchmarks (COMPARISON.md) are not rerun
 # (about 100 minutes): docs/findings.md says how they are covered.
 #
-# Usage: scripts/check_results.sh [--update]
-#   --update  after the comparison (whatever it found), replace the committed records of the
-#             examples, the readings and the 3-D solids with the rerun's and regenerate results/REPORT.md,
-#             COMPARISON.md and the figures (results/plot.py); then commit them, saying what
-#             moved.
+# Usage: scripts/check_results.sh [--update | --comparison]
+#   --update      after the comparison (whatever it found), replace the committed records of the
+#                 examples, the readings and the 3-D solids with the rerun's and regenerate
+#                 results/REPORT.md, COMPARISON.md and the figures (results/plot.py); then commit
+#                 them, saying what moved.
+#   --comparison  instead, the summary check of the comparison sets: replay the first
+#                 FULL_STEPS (default 100) steps of the sets arch-flat and arch-curved and the
+#                 whole of block (scripts/run_compare.sh, about 40 s) and compare with the
+#                 committed sets over the same steps by scripts/diff_comparison.py: per
+#                 formulation x start the verified steps and the median iterations, as
+#                 COMPARISON.md aggregates them (time-limited solves aside). The prefix and
+#                 step-size sets and the benchmarks are not replayed.
 # Environment: BUILD_DIR (default build/: the contactbench built there is run, nothing is built),
+# FULL_STEPS (--comparison: the steps replayed, default 100),
 # KEEP_DIR=DIR keeps the rerun's records in DIR (new or empty, not inside results/) instead of a
 # temporary directory that is removed afterwards. Nothing else is written (with --update,
 # results/). Exit status 1 when a run differs, 2 on a usage error.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-update=0
+update=0 comparison=0
+usage="usage: scripts/check_results.sh [--update | --comparison]"
 for arg in "$@"; do
   case "$arg" in
     --update) update=1 ;;
-    *) echo "check_results: unknown argument '$arg' (usage: scripts/check_results.sh" \
-            "[--update])" >&2
-       exit 2 ;;
+    --comparison) comparison=1 ;;
+    *) echo "check_results: unknown argument '$arg' ($usage)" >&2; exit 2 ;;
   esac
 done
+if ((update && comparison)); then echo "check_results: $usage" >&2; exit 2; fi
 build="${BUILD_DIR:-$here/build}"
 if [[ ! -x $build/bin/contactbench ]]; then
   echo "check_results: no $build/bin/contactbench (build first, or give BUILD_DIR)" >&2
@@ -51,6 +60,20 @@ else
 fi
 
 start=$SECONDS
+if ((comparison)); then
+  SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$tmp/results" FULL_STEPS="${FULL_STEPS:-100}" \
+    "$here/scripts/run_compare.sh" arch-flat arch-curved block >"$tmp/log.txt" 2>&1
+  echo "check_results: replayed arch-flat and arch-curved (${FULL_STEPS:-100} steps) and block" \
+       "in $((SECONDS - start)) s (log: $tmp/log.txt)" >&2
+  /usr/bin/python3 "$here/scripts/diff_comparison.py" "$here/results" "$tmp/results"
+  status=$?
+  if ((status == 1)); then
+    echo "check_results: FAILED: the code no longer gives the committed comparison sets" \
+         "(above); regenerate them (scripts/run_compare.sh, about an hour) and say in the" \
+         "commit what moved and why" >&2
+  fi
+  exit $status
+fi
 # The main job itself, without the comparison sets, the benchmarks and the invariance check: one
 # list of commands.
 parts=(block arch-flat arch-curved readings solid3d)

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""The summary check of the comparison sets (scripts/check_comparison.sh): compares a short replay
-of a set with the committed set over the same steps, by what COMPARISON.md reports of them.
+"""The summary check of the comparison sets (scripts/check_results.sh --comparison): compares a
+short replay of a set with the committed set over the same steps, by what COMPARISON.md reports
+of them.
 
 For every set under NEW_DIR/compare/ (runs.csv and steps.csv of `contactbench compare`), the
 committed set of the same name under OLD_DIR/compare/ is cut to the steps the new one replayed
