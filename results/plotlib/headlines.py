@@ -1,5 +1,5 @@
 """The headline figures: the section "Headline figures" of RESULTS_DIR/COMPARISON.md, one table
-that README.md links to instead of typing figures by hand (issue 26).
+that README.md links to instead of typing figures by hand.
 
 `section(results_dir, sets)` computes each figure from the records the rest of COMPARISON.md
 reads (the comparison sets' steps, `bench/scaling_benchmark.json`) with comparison.py's own

@@ -1,6 +1,6 @@
 """Where the records come from: the section "The records: commits and run times" of
 RESULTS_DIR/REPORT.md, one table that results/README.md links to instead of typing commits and
-run times by hand (issue 26).
+run times by hand.
 
 `section(results_dir)` reads every run.json under the parts of the main job (the report's
 examples, the readings, the 3-D solids, each comparison set, each step-size set) and the context
