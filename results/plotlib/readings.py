@@ -202,8 +202,8 @@ def thin_run(run_dir):
     of iterations.csv; the other files of THIN_KEPT_FILES as they are; the rest removed. The
     values are the recorded text, so the section reads the same numbers as from the records."""
     steps_path = os.path.join(run_dir, "steps.csv")
-    if not os.path.isfile(steps_path):
-        return
+    if not os.path.isfile(steps_path) or os.path.getsize(steps_path) == 0:
+        return  # a run that recorded no step: nothing to thin, what it wrote is kept
     text = pd.read_csv(steps_path, dtype=str, keep_default_na=False)
     if os.path.isfile(os.path.join(run_dir, "iterations.csv")):
         run = rep._run(run_dir)
