@@ -124,6 +124,19 @@ class Section(unittest.TestCase):
         self.assertIn("%d kinks located, %d verified" % (len(kinks), len(kinks)),
                       "\n".join(self.lines))
 
+    def test_thinned_records_give_the_same_section(self):
+        thinned = tempfile.mkdtemp(prefix="contactbench_solid3d_thin_")
+        self.addCleanup(shutil.rmtree, thinned)
+        shutil.copytree(os.path.join(self.tmp, "solid3d"), os.path.join(thinned, "solid3d"))
+        solid3d.thin_records(thinned)
+        n4 = os.path.join(thinned, "solid3d", "hertz", "n4")
+        self.assertEqual(sorted(os.listdir(n4)), sorted(solid3d.HERTZ_KEPT_FILES))
+        self.assertFalse(os.path.isdir(os.path.join(thinned, "solid3d", "plate-3d", "vtk")))
+        kept = pd.read_csv(os.path.join(n4, "solution.csv"))
+        contacts = pd.read_csv(os.path.join(n4, "contacts.csv"))
+        self.assertEqual(set(kept["node"]), set(contacts["node"]))
+        self.assertEqual(solid3d.section(thinned), self.lines)
+
     def test_no_records_no_section(self):
         empty = tempfile.mkdtemp(prefix="contactbench_solid3d_empty_")
         try:
