@@ -11,10 +11,10 @@
 # (about 100 minutes): docs/findings.md says how they are covered.
 #
 # Usage: scripts/check_results.sh [--update | --comparison]
-#   --update      after the comparison (whatever it found), replace the committed records of the
-#                 examples, the readings and the 3-D solids with the rerun's and regenerate
-#                 results/REPORT.md, COMPARISON.md and the figures (results/plot.py); then commit
-#                 them, saying what moved.
+#   --update      rerun into results/ itself: the examples', the readings' and the 3-D solids'
+#                 records are replaced and results/REPORT.md, COMPARISON.md and the figures
+#                 regenerated (results/plot.py); the comparison with the records they replace
+#                 is printed as without it. Then commit them, saying what moved and why.
 #   --comparison  instead, the summary check of the comparison sets: replay the first
 #                 FULL_STEPS (default 100) steps of the sets arch-flat and arch-curved and the
 #                 whole of block (scripts/run_compare.sh, about 40 s) and compare with the
@@ -26,7 +26,7 @@
 # FULL_STEPS (--comparison: the steps replayed, default 100),
 # KEEP_DIR=DIR keeps the rerun's records in DIR (new or empty, not inside results/) instead of a
 # temporary directory that is removed afterwards. Nothing else is written (with --update,
-# results/). Exit status 1 when a run differs, 2 on a usage error.
+# results/). Exit status 1 when a run differs (0 with --update), 2 on a usage error.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 update=0 comparison=0
@@ -75,27 +75,33 @@ if ((comparison)); then
   exit $status
 fi
 # The main job itself, without the comparison sets, the benchmarks and the invariance check: one
-# list of commands.
+# list of commands. Into the temporary directory; with --update into results/ itself (so that
+# the records name it, as the main job's do), the committed records copied aside first.
 parts=(block arch-flat arch-curved readings solid3d)
-SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$tmp/results" SKIP_READINGS=0 SKIP_SOLID3D=0 \
+committed="$here/results" records="$tmp/results"
+if ((update)); then
+  committed="$tmp/committed" records="$here/results"
+  mkdir -p "$committed"
+  for part in "${parts[@]}"; do
+    if [[ -e $records/$part ]]; then cp -r "$records/$part" "$committed/$part"; fi
+  done
+fi
+SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$records" SKIP_READINGS=0 SKIP_SOLID3D=0 \
   SKIP_COMPARE=1 SKIP_BENCH=1 SKIP_INVARIANCE=1 QUICK=0 KEEP_FULL=0 \
   "$here/scripts/run_suite.sh" >"$tmp/log.txt" 2>&1
 echo "check_results: reran ${parts[*]} in $((SECONDS - start)) s (log: $tmp/log.txt)" >&2
 
 status=0
 for part in "${parts[@]}"; do
-  echo "== $part: results/$part against the rerun" >&2
-  /usr/bin/python3 "$here/scripts/diff_records.py" --invariants "$here/results/$part" \
-    "$tmp/results/$part" || status=1
+  echo "== $part: the committed records against the rerun" >&2
+  /usr/bin/python3 "$here/scripts/diff_records.py" --invariants "$committed/$part" \
+    "$records/$part" || status=1
 done
 
-if [[ $update == 1 ]]; then
-  for part in "${parts[@]}"; do
-    rm -rf "${here:?}/results/$part"
-    cp -r "$tmp/results/$part" "$here/results/$part"
-  done
-  /usr/bin/python3 "$here/results/plot.py" "$here/results" || exit 1
-  echo "check_results: results/ updated from the rerun; commit it, saying what moved" >&2
+if ((update)); then
+  # run_suite.sh has regenerated REPORT.md, COMPARISON.md and the figures from them.
+  echo "check_results: results/ regenerated (what moved: above); commit it, saying what moved" \
+       "and why" >&2
   exit 0
 fi
 if ((status != 0)); then
