@@ -346,7 +346,7 @@ std::string ValidList(const Option& o) {
 }
 
 // The problem is given by exactly one of its options; the required options are given.
-void CheckNeeds(Command command, const std::set<std::string>& given) {
+void CheckNeeds(Command command, const std::set<std::string>& given, bool out_optional) {
   std::vector<std::string> problem_given, problem_forms;
   const Option* first_problem_option = nullptr;
   for (const Option& o : Options()) {
@@ -363,6 +363,7 @@ void CheckNeeds(Command command, const std::set<std::string>& given) {
                      ValidList(*first_problem_option));
   }
   for (const Option& o : Options()) {
+    if (out_optional && std::string_view(o.name) == "--out") continue;
     if (Takes(o, command) && o.need == Need::kRequired && !given.count(o.name)) {
       throw UsageError(NameAndValue(o) + " is required" + ValidList(o));
     }
@@ -511,7 +512,8 @@ const std::vector<Option>& Options() {
   return options;
 }
 
-RunArguments ParseArguments(Command command, const std::vector<std::string>& args) {
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args,
+                            bool out_optional) {
   const CommandInfo* info = nullptr;
   for (const CommandInfo& c : Commands()) {
     if (c.command == command) info = &c;
@@ -540,7 +542,7 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     o->parse(*o, flag ? std::string() : args[++i], &a);
     if (a.help) return a;
   }
-  CheckNeeds(command, given);
+  CheckNeeds(command, given, out_optional);
   if (info->operand != nullptr && a.operand.empty()) {
     throw UsageError(std::string(info->operand) + " is required");
   }

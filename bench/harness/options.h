@@ -114,7 +114,10 @@ std::string NameAndValue(const Option& option);
 
 // The arguments of `command` (the command line after its name), checked: unknown, repeated or
 // missing options and bad values throw UsageError. With --help, returns at once with `help`.
-RunArguments ParseArguments(Command command, const std::vector<std::string>& args);
+// `out_optional`: --out may be left out (the Python module keeps the records in memory then,
+// commands.h).
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args,
+                            bool out_optional = false);
 
 // "a, b, c".
 std::string Join(const std::vector<std::string>& items, const std::string& separator = ", ");
