@@ -29,6 +29,7 @@
 #include "harness/run_json.h"
 #include "harness/snapshots.h"
 #include "harness/suggest.h"
+#include "io/fclib_file.h"
 #include "io/problem_file.h"
 #include "path/near_start.h"
 #include "path/path.h"
@@ -192,6 +193,7 @@ void DescribeArguments(const RunArguments& a, const Problem& problem, RunJson* r
   record->problem = problem.name;
   record->problem_source =
       a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
+  record->problem_notes = problem.notes;
   record->settings = a.settings;
   record->tolerance = a.tolerance;
   record->time_limit_s = a.time_limit;
@@ -464,21 +466,31 @@ int Compare(const RunArguments& a, RunJson* record) {
   });
 }
 
-// Writes the problem as a problem file.
+// Writes the problem as a problem file: the suite's JSON, or an FCLIB global problem.
 int Export(const RunArguments& a) {
   const Problem problem = LoadProblem(a);
-  std::string text;
-  try {
-    text = io::ProblemToJson(problem);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
   const std::filesystem::path out(a.out);
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec)) {
     throw InputError("--out: '" + a.out + "' is a directory; give the problem file's name");
   }
   const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
+  if (a.export_format == "fclib") {
+    PrepareOutput(dir.string());
+    try {
+      io::WriteFclibFile(problem, a.out);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    std::fprintf(stderr, "%s -> %s (FCLIB, mu = 0)\n", problem.name.c_str(), a.out.c_str());
+    return kExitOk;
+  }
+  std::string text;
+  try {
+    text = io::ProblemToJson(problem);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
   PrepareOutput(dir.string());
   std::ofstream file(out, std::ios::binary);
   file << text;

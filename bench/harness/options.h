@@ -60,6 +60,7 @@ struct RunArguments {
   std::string mode = "replay";            // compare
   std::string reference = "implicit-fb";  // compare
   std::string out;
+  std::string export_format = "json";  // export: json or fclib
   bool overwrite = false;     // run, compare: replace an earlier run's records in `out`
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
