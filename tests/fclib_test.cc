@@ -104,7 +104,8 @@ TEST_P(FclibFiles, FrictionIsRefusedUnlessDroppedAndThenNoted) {
 // verified on all five; a global problem's M is positive definite, so its answer u is unique
 // and every verified formulation finds the same one.
 TEST_P(FclibFiles, SolvedAndJudgedByEveryFormulationThatAcceptsIt) {
-  const Problem p = io::LoadProblemFile((kData / GetParam().file).string(), {{"friction", "ignore"}});
+  const Problem p =
+      io::LoadProblemFile((kData / GetParam().file).string(), {{"friction", "ignore"}});
   const StepProblem step = FixedLoadStep(p);
   const StepResult reference = SolveWith("implicit-fb", step);
   const Verdict judged = Judge(step, reference.point, 1e-8);
@@ -171,7 +172,8 @@ TEST_F(FclibRoundTrip, BlockWrittenAndReadBackGivesTheSameAnswer) {
   EXPECT_EQ((block.load * block.model->load_pattern() - back.model->load_pattern()).norm(), 0.0);
   block.model->Gaps(u, &phi);
   back.model->Gaps(u, &phi_back);
-  EXPECT_LE((phi - phi_back).lpNorm<Eigen::Infinity>(), 1e-15 * (1.0 + phi.lpNorm<Eigen::Infinity>()));
+  EXPECT_LE((phi - phi_back).lpNorm<Eigen::Infinity>(),
+            1e-15 * (1.0 + phi.lpNorm<Eigen::Infinity>()));
 
   const io::FclibAnswers answers = io::LoadFclibAnswers(path);
   ASSERT_TRUE(answers.has_solution);
@@ -218,8 +220,9 @@ TEST_F(FclibRoundTrip, BadFilesAreRefusedWithFileAndReason) {
   const std::string good = (dir / "good.hdf5").string();
   const Problem block = MakeProblem("block", {{"n", "2"}});
   io::WriteFclibFile(block, good);
-  const std::string unknown =
-      ExpectMessage([&] { io::LoadProblemFile(good, {{"friction", "sometimes"}}); });
+  const std::string unknown = ExpectMessage([&] {
+    io::LoadProblemFile(good, {{"friction", "sometimes"}});
+  });
   EXPECT_NE(unknown.find("friction"), std::string::npos) << unknown;
 }
 

@@ -28,9 +28,9 @@ template <typename T>
 std::vector<T> Leading(std::vector<T> values, std::size_t count, const Hdf5File& file,
                        const std::string& path) {
   if (values.size() < count) {
-    throw InputError(file.name(), path,
-                     "has " + std::to_string(values.size()) + " entries, needs " +
-                         std::to_string(count));
+    throw InputError(
+        file.name(), path,
+        "has " + std::to_string(values.size()) + " entries, needs " + std::to_string(count));
   }
   values.resize(count);
   return values;
@@ -48,7 +48,8 @@ void CheckIndex(long long index, long long bound, const Hdf5File& file, const st
 // and `indices` (inner indices).
 std::vector<Triplet> Compressed(const Hdf5File& file, const std::string& group, long long outer,
                                 long long inner, long long nzmax, bool columns) {
-  const auto starts = Leading(file.Integers(group + "/p", outer + 1), outer + 1, file, group + "/p");
+  const auto starts =
+      Leading(file.Integers(group + "/p", outer + 1), outer + 1, file, group + "/p");
   if (starts[0] != 0) throw InputError(file.name(), group + "/p[0]", "must be 0");
   for (long long k = 0; k < outer; ++k) {
     if (starts[k + 1] < starts[k]) {
@@ -58,8 +59,9 @@ std::vector<Triplet> Compressed(const Hdf5File& file, const std::string& group, 
   }
   const long long count = starts[outer];
   if (count > nzmax) {
-    throw InputError(file.name(), group + "/p[" + std::to_string(outer) + "]",
-                     std::to_string(count) + " entries, more than nzmax = " + std::to_string(nzmax));
+    throw InputError(
+        file.name(), group + "/p[" + std::to_string(outer) + "]",
+        std::to_string(count) + " entries, more than nzmax = " + std::to_string(nzmax));
   }
   const auto indices = Leading(file.Integers(group + "/i", nzmax), count, file, group + "/i");
   const auto values = Leading(file.Reals(group + "/x", nzmax), count, file, group + "/x");
@@ -109,7 +111,8 @@ SpMat ReadFclibMatrix(const Hdf5File& file, const std::string& group) {
   } else {
     throw InputError(file.name(), group + "/nz",
                      "must be >= 0 (triplets), -1 (compressed columns) or -2 (compressed rows), "
-                     "got " + std::to_string(nz));
+                     "got " +
+                         std::to_string(nz));
   }
   for (std::size_t k = 0; k < triplets.size(); ++k) {
     if (!std::isfinite(triplets[k].value())) {
@@ -131,8 +134,8 @@ void WriteFclibMatrix(const Hdf5File& file, const std::string& group, const SpMa
   file.WriteIntegers(group + "/m", {static_cast<int>(m.rows())});
   file.WriteIntegers(group + "/n", {static_cast<int>(m.cols())});
   file.WriteIntegers(group + "/nz", {-1});
-  file.WriteIntegers(group + "/p", std::vector<int>(m.outerIndexPtr(),
-                                                    m.outerIndexPtr() + m.cols() + 1));
+  file.WriteIntegers(group + "/p",
+                     std::vector<int>(m.outerIndexPtr(), m.outerIndexPtr() + m.cols() + 1));
   file.WriteIntegers(group + "/i", std::vector<int>(m.innerIndexPtr(), m.innerIndexPtr() + nnz));
   file.WriteReals(group + "/x", m.valuePtr(), static_cast<std::size_t>(nnz));
 }

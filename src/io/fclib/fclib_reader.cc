@@ -55,9 +55,9 @@ Layout ReadLayout(const Hdf5File& file) {
 Vec ReadVector(const Hdf5File& file, const std::string& path, Eigen::Index size) {
   const std::vector<double> v = file.Reals(path, static_cast<std::size_t>(size));
   if (static_cast<Eigen::Index>(v.size()) != size) {
-    throw InputError(file.name(), path,
-                     "has " + std::to_string(v.size()) + " entries, expected " +
-                         std::to_string(size));
+    throw InputError(
+        file.name(), path,
+        "has " + std::to_string(v.size()) + " entries, expected " + std::to_string(size));
   }
   for (std::size_t k = 0; k < v.size(); ++k) {
     if (!std::isfinite(v[k])) {
@@ -70,9 +70,9 @@ Vec ReadVector(const Hdf5File& file, const std::string& path, Eigen::Index size)
 // The number of contacts from a dimension that holds spacedim entries per contact.
 int Contacts(const Hdf5File& file, const std::string& path, Eigen::Index size, int spacedim) {
   if (size % spacedim != 0) {
-    throw InputError(file.name(), path,
-                     std::to_string(size) + " is not a multiple of spacedim = " +
-                         std::to_string(spacedim));
+    throw InputError(
+        file.name(), path,
+        std::to_string(size) + " is not a multiple of spacedim = " + std::to_string(spacedim));
   }
   return static_cast<int>(size / spacedim);
 }
@@ -94,8 +94,8 @@ Vec NormalEntries(const Vec& v, int spacedim) {
 }
 
 // Friction: zero reads silently; nonzero is refused unless friction=ignore, and then noted.
-void DropFriction(const Hdf5File& file, const std::string& path, const Vec& mu,
-                  const Parameters& p, std::vector<std::string>* notes) {
+void DropFriction(const Hdf5File& file, const std::string& path, const Vec& mu, const Parameters& p,
+                  std::vector<std::string>* notes) {
   for (Eigen::Index k = 0; k < mu.size(); ++k) {
     if (mu(k) < 0.0) {
       throw InputError(file.name(), path + "[" + std::to_string(k) + "]", "must be >= 0");
@@ -108,9 +108,10 @@ void DropFriction(const Hdf5File& file, const std::string& path, const Vec& mu,
        << ")";
   if (p.Choice("friction") != "ignore") {
     throw InputError(file.name(), path,
-                     what.str() + ": this suite solves frictionless problems; --set "
-                                  "friction=ignore drops friction (mu = 0), which changes the "
-                                  "problem");
+                     what.str() +
+                         ": this suite solves frictionless problems; --set "
+                         "friction=ignore drops friction (mu = 0), which changes the "
+                         "problem");
   }
   notes->push_back("friction dropped: " + what.str() + " set to mu = 0");
 }
@@ -147,9 +148,9 @@ double MaxAbs(const SpMat& m) {
 SpMat SymmetricStiffness(const Hdf5File& file, const std::string& path, const SpMat& m,
                          std::vector<std::string>* notes) {
   if (m.rows() != m.cols()) {
-    throw InputError(file.name(), path,
-                     "must be square, is " + std::to_string(m.rows()) + " x " +
-                         std::to_string(m.cols()));
+    throw InputError(
+        file.name(), path,
+        "must be square, is " + std::to_string(m.rows()) + " x " + std::to_string(m.cols()));
   }
   const SpMat transpose = m.transpose();
   const double asymmetry = MaxAbs(SpMat(transpose - m)) / std::max(MaxAbs(m), 1e-300);
@@ -183,8 +184,8 @@ Problem ReadLocal(const Hdf5File& file, const Layout& layout,
   const Vec mu = ReadVector(file, root + "/vectors/mu", contacts);
   const SpMat select = NormalSelection(contacts, layout.spacedim);
   const SpMat w_nn = SpMat(select.transpose()) * w * select;
-  auto model =
-      std::make_shared<ComplementarityModel>(ComplementarityModel::Lcp(w_nn, NormalEntries(q, layout.spacedim)));
+  auto model = std::make_shared<ComplementarityModel>(
+      ComplementarityModel::Lcp(w_nn, NormalEntries(q, layout.spacedim)));
   double length = 1.0, force = 1.0;
   model->DataScales(&length, &force);
   Problem problem;
@@ -193,9 +194,9 @@ Problem ReadLocal(const Hdf5File& file, const Layout& layout,
   problem.model = std::move(model);
   problem.load = 0.0;  // an LCP: (29) at lambda = 0 is w = W_NN z + q_N = -r
   problem.units = "none";
-  problem.description = "FCLIB local problem: LCP on the normal components, nc = " +
-                        std::to_string(contacts) + ", spacedim " +
-                        std::to_string(layout.spacedim);
+  problem.description =
+      "FCLIB local problem: LCP on the normal components, nc = " + std::to_string(contacts) +
+      ", spacedim " + std::to_string(layout.spacedim);
   return problem;
 }
 
@@ -219,7 +220,8 @@ Problem ReadGlobal(const Hdf5File& file, const Layout& layout,
   const Vec w = ReadVector(file, root + "/vectors/w", h.cols());
   const Vec mu = ReadVector(file, root + "/vectors/mu", contacts);
   const SpMat normals = h * NormalSelection(contacts, layout.spacedim);
-  auto model = std::make_shared<LinearContactModel>(m, normals, NormalEntries(w, layout.spacedim), f);
+  auto model =
+      std::make_shared<LinearContactModel>(m, normals, NormalEntries(w, layout.spacedim), f);
   // The data's own sizes (as ComplementarityModel::DataScales): R = ||f||_inf, a typical
   // force, and L = R / ||M||_inf, the displacement M maps onto it; 1 where the data give none.
   const double row_sum = (m.cwiseAbs() * Vec::Ones(m.cols())).maxCoeff();
@@ -242,8 +244,7 @@ Problem ReadGlobal(const Hdf5File& file, const Layout& layout,
 
 bool FclibAvailable() { return true; }
 
-Problem LoadFclibFile(const std::string& path,
-                      const std::map<std::string, std::string>& settings) {
+Problem LoadFclibFile(const std::string& path, const std::map<std::string, std::string>& settings) {
   const Hdf5File file = Hdf5File::OpenForReading(path);
   const Layout layout = ReadLayout(file);
   Problem problem =

@@ -23,8 +23,7 @@ Problem LoadFclibFile(const std::string& path, const std::map<std::string, std::
 
 FclibAnswers LoadFclibAnswers(const std::string& path) { Unavailable(path); }
 
-void WriteFclibFile(const Problem&, const std::string& path, const FclibState*,
-                    const FclibState*) {
+void WriteFclibFile(const Problem&, const std::string& path, const FclibState*, const FclibState*) {
   Unavailable(path);
 }
 

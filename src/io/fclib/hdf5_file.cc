@@ -107,8 +107,8 @@ std::vector<long long> Hdf5File::Integers(const std::string& path, std::size_t m
   Hdf5Handle type(H5Dget_type(dataset.get()), H5Tclose);
   if (H5Tget_class(type.get()) != H5T_INTEGER) Fail(path, "must hold integers");
   std::vector<long long> values(Extent(dataset, path, max_size));
-  if (!values.empty() && H5Dread(dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                 values.data()) < 0) {
+  if (!values.empty() &&
+      H5Dread(dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     Fail(path, "HDF5 cannot read the integers");
   }
   return values;
@@ -120,8 +120,8 @@ std::vector<double> Hdf5File::Reals(const std::string& path, std::size_t max_siz
   const H5T_class_t kind = H5Tget_class(type.get());
   if (kind != H5T_FLOAT && kind != H5T_INTEGER) Fail(path, "must hold numbers");
   std::vector<double> values(Extent(dataset, path, max_size));
-  if (!values.empty() && H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                 values.data()) < 0) {
+  if (!values.empty() &&
+      H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     Fail(path, "HDF5 cannot read the numbers");
   }
   return values;
