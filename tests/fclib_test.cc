@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "formulations/registry.h"
@@ -14,6 +15,7 @@
 #include "io/problem_file.h"
 #include "path/path.h"
 #include "problems/problem.h"
+#include "run_contactbench.h"
 #include "source_tree.h"
 #include "verdict/verdict.h"
 
@@ -25,6 +27,9 @@ extern "C" {  // fclib.h declares C functions without a C++ guard
 
 namespace cb {
 namespace {
+
+using ::cb::testing_support::CliOutcome;
+using ::cb::testing_support::RunContactbench;
 
 const std::filesystem::path kData = ::cb::testing_support::SourceRoot() / "tests/data/fclib";
 
@@ -224,6 +229,44 @@ TEST_F(FclibRoundTrip, BadFilesAreRefusedWithFileAndReason) {
     io::LoadProblemFile(good, {{"friction", "sometimes"}});
   });
   EXPECT_NE(unknown.find("friction"), std::string::npos) << unknown;
+}
+
+// Through the CLI: a frictional file refused (exit 2, the dataset named), the same file with
+// friction=ignore run and run.json saying what was dropped; an exported P1 runs and verifies.
+TEST_F(FclibRoundTrip, TheCliRefusesFrictionAndRecordsItsDrop) {
+  const auto dir = TempDir("cli");
+  const std::string file = (kData / "CubeH8.hdf5").string();
+  const CliOutcome refused =
+      RunContactbench("run --problem-file " + file + " --formulation active-set --out " +
+                      (dir / "refused").string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("/fclib_global/vectors/mu"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused" / "steps.csv"));
+
+  const CliOutcome run = RunContactbench("run --problem-file " + file +
+                                         " --set friction=ignore --formulation active-set --out " +
+                                         (dir / "run").string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(dir / "run" / "run.json");
+  const nlohmann::json record = nlohmann::json::parse(in);
+  const auto notes = record.at("problem_notes");
+  ASSERT_EQ(notes.size(), 2u) << notes.dump();
+  EXPECT_EQ(notes[0].get<std::string>().rfind("M symmetrised", 0), 0u) << notes.dump();
+  EXPECT_EQ(notes[1].get<std::string>().rfind("friction dropped: 1 of 1 contacts", 0), 0u)
+      << notes.dump();
+  EXPECT_EQ(record.at("settings").at("friction"), "ignore");
+
+  const std::string exported = (dir / "block.hdf5").string();
+  const CliOutcome written = RunContactbench(
+      "export --problem block --set n=3 --format fclib "
+      "--out " +
+      exported);
+  ASSERT_EQ(written.status, 0) << written.output;
+  const CliOutcome solved =
+      RunContactbench("run --problem-file " + exported + " --formulation implicit-fb --out " +
+                      (dir / "block").string());
+  EXPECT_EQ(solved.status, 0) << solved.output;
+  EXPECT_NE(solved.output.find("verified"), std::string::npos) << solved.output;
 }
 
 #ifdef CONTACTBENCH_HAVE_FCLIB_LIBRARY
