@@ -476,6 +476,11 @@ int Export(const RunArguments& a) {
   }
   const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
   if (a.export_format == "fclib") {
+    if (!io::FclibAvailable()) {
+      throw InputError(
+          "--format fclib: this build has no HDF5 (install libhdf5-dev, "
+          "scripts/packages.txt, and configure again)");
+    }
     PrepareOutput(dir.string());
     try {
       io::WriteFclibFile(problem, a.out);
