@@ -13,6 +13,7 @@
 #include "io/fclib_file.h"
 #include "io/input_error.h"
 #include "io/problem_file.h"
+#include "model/linear_contact_model.h"
 #include "path/path.h"
 #include "problems/problem.h"
 #include "run_contactbench.h"
@@ -294,6 +295,45 @@ TEST_F(FclibRoundTrip, FclibsOwnReaderReadsWhatTheSuiteWrites) {
   fclib_delete_global(g);
   free(g);
 }
+#ifdef CONTACTBENCH_HAVE_SICONOS
+// Interop: P1 exported, read by FCLIB's own reader (not the suite's), its M, H, f, w handed to
+// Siconos' Lemke solver (siconos-lemke: the LCP of the normal columns with v eliminated); it
+// reaches the answer the suite's implicit-fb finds on the named problem.
+TEST_F(FclibRoundTrip, SiconosSolvesWhatFclibsReaderReadsToTheSuitesAnswer) {
+  const Problem block = MakeProblem("block", {{"n", "4"}});
+  const StepProblem step = FixedLoadStep(block);
+  const StepResult suite = SolveWith("implicit-fb", step);
+  ASSERT_TRUE(Judge(step, suite.point, 1e-8).verified) << suite.message;
+  const auto path = (TempDir("siconos") / "block.hdf5").string();
+  io::WriteFclibFile(block, path);
+
+  fclib_global* g = fclib_read_global(path.c_str());
+  ASSERT_NE(g, nullptr);
+  ASSERT_EQ(g->M->nz, -1);  // compressed columns, as written
+  ASSERT_EQ(g->H->nz, -1);
+  const int n = g->M->n, d = g->spacedim, nc = g->H->n / d;
+  const SpMat m = Eigen::Map<const SpMat>(n, n, g->M->nzmax, g->M->p, g->M->i, g->M->x);
+  const SpMat h = Eigen::Map<const SpMat>(n, g->H->n, g->H->nzmax, g->H->p, g->H->i, g->H->x);
+  std::vector<Triplet> pick;
+  for (int p = 0; p < nc; ++p) pick.emplace_back(p * d, p, 1.0);
+  SpMat select(g->H->n, nc);
+  select.setFromTriplets(pick.begin(), pick.end());
+  const Vec w = Eigen::Map<const Vec>(g->w, g->H->n);
+  const Vec f = Eigen::Map<const Vec>(g->f, n);
+  const LinearContactModel model(m, h * select, SpMat(select.transpose()) * w, f);
+  fclib_delete_global(g);
+  free(g);
+
+  const StepProblem from_fclib{&model, ZeroState(model), StepConstraint::FixedLoad(1.0),
+                               block.scales};
+  const StepResult siconos = SolveWith("siconos-lemke", from_fclib);
+  ASSERT_TRUE(Judge(from_fclib, siconos.point, 1e-8).verified) << siconos.message;
+  EXPECT_LE((siconos.point.du - suite.point.du).lpNorm<Eigen::Infinity>(),
+            1e-8 * suite.point.du.lpNorm<Eigen::Infinity>());
+  EXPECT_LE((siconos.point.r - suite.point.r).lpNorm<Eigen::Infinity>(),
+            1e-8 * suite.point.r.lpNorm<Eigen::Infinity>());
+}
+#endif
 #endif
 
 }  // namespace
