@@ -21,6 +21,7 @@
 #include "harness/records_doc.h"
 #include "harness/run_json.h"
 #include "harness/suggest.h"
+#include "io/fclib_file.h"
 #include "io/problem_file.h"
 #include "problems/problem.h"
 #include "solvers/equation_solver.h"
@@ -50,21 +51,36 @@ int List() {
   return kExitOk;
 }
 
-// Writes the problem as a problem file.
+// Writes the problem as a problem file: the suite's JSON, or an FCLIB global problem.
 int Export(const RunArguments& a) {
   const Problem problem = LoadProblem(a);
-  std::string text;
-  try {
-    text = io::ProblemToJson(problem);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
   const std::filesystem::path out(a.out);
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec)) {
     throw InputError("--out: '" + a.out + "' is a directory; give the problem file's name");
   }
   const std::filesystem::path dir = out.parent_path().empty() ? "." : out.parent_path();
+  if (a.export_format == "fclib") {
+    if (!io::FclibAvailable()) {
+      throw InputError(
+          "--format fclib: this build has no HDF5 (install libhdf5-dev, "
+          "scripts/packages.txt, and configure again)");
+    }
+    PrepareOutput(dir.string());
+    try {
+      io::WriteFclibFile(problem, a.out);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    std::fprintf(stderr, "%s -> %s (FCLIB, mu = 0)\n", problem.name.c_str(), a.out.c_str());
+    return kExitOk;
+  }
+  std::string text;
+  try {
+    text = io::ProblemToJson(problem);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
   PrepareOutput(dir.string());
   std::ofstream file(out, std::ios::binary);
   file << text;

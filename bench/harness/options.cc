@@ -212,6 +212,14 @@ std::vector<Option> MakeOptions() {
        nullptr, [](O, S, A* a) { a->overwrite = true; }},
       {"--out", "F.json", kExport, Need::kRequired, false, "the problem file to write", nullptr,
        [](O, S v, A* a) { a->out = v; }},
+      {"--format", "json|fclib", kExport, Need::kOptional, false,
+       "the problem file's format: the suite's JSON (default) or an FCLIB global problem, HDF5 "
+       "with mu = 0 (docs/problem-files.md, \"FCLIB\")",
+       nullptr,
+       [](O o, S v, A* a) {
+         if (v != "json" && v != "fclib") Refuse(o, "must be json or fclib, got '" + v + "'");
+         a->export_format = v;
+       }},
       {"--solver", "NAME", kPathCommands, Need::kOptional, false,
        "the equation solver of implicit-fb, nonsmooth-fb and active-set (default newton)",
        EquationSolverNames, [](O o, S v, A* a) { a->config.solver = Choice(o, v); }},

@@ -60,7 +60,8 @@ struct RunArguments {
   std::string mode = "replay";            // compare
   std::string reference = "implicit-fb";  // compare
   std::string out;
-  bool overwrite = false;     // run, compare: replace an earlier run's records in `out`
+  std::string export_format = "json";  // export: json or fclib
+  bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).

@@ -41,6 +41,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
   j["command"] = run.command;
   j["problem"] = OrNull(run.problem);
   j["problem_source"] = run.problem_source;
+  j["problem_notes"] = run.problem_notes;
   j["settings"] = run.settings;
   j["formulations"] = run.formulations;
   if (run.command == "compare") {
