@@ -5,7 +5,8 @@
 
 writes RESULTS_DIR/REPORT.md (the report's three examples, plotlib/reproduction.py, with the
 readings study of plotlib/readings.py and the 3-D solids of plotlib/solid3d.py when the records
-of scripts/run_readings.sh and scripts/run_solid3d.sh exist) and
+of scripts/run_readings.sh and scripts/run_solid3d.sh exist, and the commits and run times of
+every part, plotlib/provenance.py) and
 RESULTS_DIR/COMPARISON.md (the formulation comparison and the benchmarks,
 plotlib/comparison.py), with their PNG figures under RESULTS_DIR/figures/. Records of the quick
 mode (`scripts/run_suite.sh --quick`) come with its marker, RESULTS_DIR/QUICK_MODE.txt: both
@@ -17,12 +18,13 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from plotlib import comparison, readings, reproduction, solid3d  # noqa: E402
+from plotlib import comparison, provenance, readings, reproduction, solid3d  # noqa: E402
 
 
 def main(argv):
     results_dir = argv[1] if len(argv) > 1 else os.path.dirname(os.path.abspath(__file__))
-    sections = [readings.section(results_dir), solid3d.section(results_dir)]
+    sections = [readings.section(results_dir), solid3d.section(results_dir),
+                provenance.section(results_dir)]
     reproduction.write(results_dir, [s for s in sections if s])
     print("wrote %s" % os.path.join(results_dir, "REPORT.md"), file=sys.stderr)
     comparison.write(results_dir)

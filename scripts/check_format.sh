@@ -14,7 +14,8 @@ cd "$here"
 tracked() { git ls-files "$@" 2>/dev/null; }
 mapfile -t cxx < <(tracked '*.h' '*.cc' ||
   find src formulations bench fuzz tests -name '*.h' -o -name '*.cc')
-mapfile -t python < <(tracked 'results/*.py' 'tests/python/*.py' 'scripts/*.py' ||
+mapfile -t python < <(tracked 'results/*.py' 'tests/python/*.py' 'scripts/*.py' 'python/*.py' \
+  'tests/python_module/*.py' ||
   find results tests/python scripts -name '*.py')
 
 status=0

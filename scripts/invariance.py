@@ -46,23 +46,38 @@ def rows(path):
 
 
 def load(root, plan_row):
-    """What one run recorded, reduced to what the comparison needs."""
-    out = os.path.join(root, plan_row["dir"])
-    run = {"kind": plan_row["kind"], "threads": int(plan_row["threads"]), "problem": ""}
-    try:
-        with open(out + ".status") as f:
-            rc, t0, t1 = f.read().split()
-        run["exit"], run["seconds"] = int(rc), float(t1) - float(t0)
-    except (FileNotFoundError, ValueError):
-        run["exit"], run["seconds"] = None, 0.0
+    """What one run of the plan recorded, reduced to what the comparison needs."""
+    return load_run(os.path.join(root, plan_row["dir"]), plan_row["kind"],
+                    int(plan_row["threads"]))
+
+
+def run_kind(out):
+    """"fixed" when every step of the run in `out` is a fixed-load solve (P1), else "path"."""
+    steps = rows(os.path.join(out, "steps.csv"))
+    return "fixed" if steps and all(s["constraint"] == "fixed-load" for s in steps) else "path"
+
+
+def load_run(out, kind=None, threads=None):
+    """What the run in directory `out` recorded, reduced to what the comparison needs. `kind`:
+    "fixed" (one solve, its answer compared) or "path". The exit status and run time come from
+    out.status (written by check_invariance.sh) or else from run.json's exit_status (no time);
+    `threads`: the BLAS threads asked for (None: not checked)."""
     try:
         with open(os.path.join(out, "run.json")) as f:
             info = json.load(f)
     except (FileNotFoundError, ValueError):
         info = {}
+    run = {"kind": kind or run_kind(out), "problem": ""}
+    try:
+        with open(out + ".status") as f:
+            rc, t0, t1 = f.read().split()
+        run["exit"], run["seconds"] = int(rc), float(t1) - float(t0)
+    except (FileNotFoundError, ValueError):
+        run["exit"], run["seconds"] = info.get("exit_status"), 0.0
     run["reason"] = info.get("reason", "no run.json")
     found = re.search(r"\((\d+) threads?\)", info.get("blas", ""))
     run["blas_threads"] = int(found.group(1)) if found else None
+    run["threads"] = run["blas_threads"] if threads is None else threads
     steps = [s for s in rows(os.path.join(out, "steps.csv")) if s["accepted"] == "true"]
     run["accepted"] = len(steps)
     run["all_verified"] = all(s["verified"] == "true" for s in steps)
@@ -141,6 +156,22 @@ def solution_difference(base, other):
         return None
     diff = max(abs(a - b) for k in base for a, b in zip(base[k], other[k]))
     return diff / (largest(base) or 1.0)
+
+
+def histogram(run):
+    """{iterations: accepted steps that took that many}."""
+    counts = {}
+    for n in run["iterations"].values():
+        counts[n] = counts.get(n, 0) + 1
+    return counts
+
+
+def histogram_moved(base, other):
+    """Steps that moved between the iteration counts of the two runs' histograms: 1/2 sum_k
+    |a_k - b_k| over every count k (exact counts, not the report's bins); one step that takes
+    one iteration more moves one step."""
+    a, b = histogram(base), histogram(other)
+    return sum(abs(a.get(k, 0) - b.get(k, 0)) for k in set(a) | set(b)) / 2
 
 
 def threads_differ(run):

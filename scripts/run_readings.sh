@@ -13,12 +13,16 @@
 #                                                0.05 and 0.2, and in kN with E = 20 MPa
 # RESULTS_DIR/readings/index.csv lists every run: reading, problem, solver, directory,
 # settings, exit status. A run that fails keeps its records and the study goes on; the report says where the
-# path stopped. results/plot.py then writes the section (results/plotlib/readings.py).
+# path stopped. Last, the records are thinned to what the report reads (about 8 MB of 66: the
+# accepted steps, kinks, critical points and the iterations rescored at the report's stopping
+# tests; results/thin_records.py), unless KEEP_FULL=1. results/plot.py then writes the section
+# (results/plotlib/readings.py).
 #
 # Run time on the 2-core machine of results/README.md: about a minute (each run 1-3 s).
 # Usage: scripts/run_readings.sh
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), QUICK=1 for 100 steps
-# per run (a check of the pipeline, not a result), SKIP_SETUP=1 to use an existing build.
+# per run (a check of the pipeline, not a result), SKIP_SETUP=1 to use an existing build,
+# KEEP_FULL=1 to keep every record (iterations.csv, states) instead of the thinned ones.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$here/build}"
@@ -58,4 +62,9 @@ done
 run arc-0.05 arch-flat newton invariance/arc-0.05 "arc_length=0.05 steps=4000"
 run arc-0.2 arch-flat newton invariance/arc-0.2 "arc_length=0.2 steps=1000"
 run kN-20MPa arch-flat newton invariance/kN-20MPa "load=5 youngs_modulus=2e4 force_scale=1"
+# Thinned to what REPORT.md's section reads (results/thin_records.py): committed, so that
+# results/plot.py on a fresh clone writes the section; KEEP_FULL=1 keeps every record.
+if [[ "${KEEP_FULL:-0}" != 1 ]]; then
+  /usr/bin/python3 "$here/results/thin_records.py" "$(dirname "$out")" readings || exit 1
+fi
 echo "records in $out (index.csv; run log: log.txt)" >&2

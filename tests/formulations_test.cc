@@ -134,17 +134,6 @@ constexpr KnownLimitation kKnownLimitations[] = {
     {"nlopt-merit", "block_n10", "LD_LBFGS on the merit stops (NLopt FAILURE) on P1 at n = 10"},
     {"nlopt-energy", "lcp2", "stops at eq_res ~4e-8 (tolerance reached), above the 1e-8 verdict"},
     {"nlopt-energy", "block_n10", "reaches maxeval with eq_res ~1e-3 on P1 at n = 10"},
-    {"petsc-rsls", "two_bar_obstacle_path",
-     "where the path turns back at the floor (step ~50) the predictor points into the floor and "
-     "the line search stalls; the suite's nonsmooth formulations restart there (method.md 8)"},
-    {"petsc-ssls", "two_bar_obstacle_path",
-     "as petsc-rsls; with -snes_linesearch_type l2 it traces the path (docs/backend-petsc.md)"},
-    {"dist-nonsmooth-fb", "two_bar_obstacle_path",
-     "the stall of petsc-rsls at step ~50, without nonsmooth-fb's restart (docs/scale-out.md)"},
-    {"dist-active-set", "two_bar_obstacle_path",
-     "the stall of petsc-rsls at step ~50, without active-set's restart (docs/scale-out.md)"},
-    {"dist-petsc-rsls", "two_bar_obstacle_path", "as petsc-rsls"},
-    {"dist-petsc-ssls", "two_bar_obstacle_path", "as petsc-ssls"},
 };
 
 const KnownLimitation* FindLimitation(const std::string& formulation, const std::string& fixture) {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "fd_check.h"
 #include "fixtures.h"
@@ -419,6 +420,37 @@ TEST(NloptMpccTest, TwoBarObstaclePathThroughTheKink) {
                               (1.0 / std::sqrt(b * b + w * w) - 1.0 / std::sqrt(b * b + h * h)) * w;
   EXPECT_NEAR(h + s.final_state.u[p.control_dof], w, 1e-9);
   EXPECT_NEAR(s.final_state.r[0], -(s.final_state.lambda - lambda_floor), 1e-8);
+}
+
+// The steep, soft two-bar truss meets its floor where the load is at its minimum. From the
+// straight prediction nlopt-mpcc reached the floor and then returned near its start at every
+// theta down to 3e-10; the corner prediction (corner_prediction.h) starts the step across the
+// corner on the floor. Every state agrees with the closed form; one kink, where it puts it.
+TEST(NloptMpccTest, PassesAKinkAtTheLoadMinimum) {
+  SKIP_WITHOUT_NLOPT();
+  const Problem p = MakeProblem(
+      "two-bar-obstacle", {{"height", "1"}, {"floor_height", "0.4"}, {"axial_stiffness", "1"}});
+  const fixtures::TwoBarClosedForm t = fixtures::TwoBarOf(p);
+  const double floor = p.parameters.Real("floor_height");
+  auto mpcc = Make("nlopt-mpcc");
+  PathOptions options;
+  options.arc_length = 0.05;
+  options.max_steps = 40;
+  struct Accepted final : PathObserver {
+    void OnAttempt(const StepAttempt& a) override {
+      if (a.accepted) states.push_back(a.state);
+    }
+    std::vector<State> states;
+  } accepted;
+  const PathSummary s =
+      TraceArcLengthPath(*p.model, p.scales, ZeroState(*p.model), *mpcc, options, &accepted);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  EXPECT_EQ(s.kinks, 1);
+  EXPECT_GT(s.final_state.lambda, t.Lambda(floor));
+  EXPECT_NEAR(t.h + s.final_state.u[p.control_dof], floor, 1e-8);
+  for (const State& state : accepted.states) {
+    EXPECT_TRUE(fixtures::CheckTwoBarObstacle(p, state)) << "lambda " << state.lambda;
+  }
 }
 
 TEST(NloptMpccTest, BarWallArcLengthStepsAreVerified) {

@@ -54,13 +54,24 @@ TEST_F(PathRecorderTest, EachAcceptedStepIsRecordedOnce) {
     EXPECT_EQ(s.increment.du, a.result.point.du);
     EXPECT_EQ(s.prediction.du, a.predicted_du);
     EXPECT_EQ(s.prediction.dlambda, a.predicted_dlambda);
+    EXPECT_EQ(s.across_contact_change, a.across_contact_change);
     EXPECT_EQ(s.arc_length, a.arc_length);
     EXPECT_EQ(s.kind, ConstraintKind::kArcLength);
   }
 }
 
+// The step within which the floor is met was predicted along both pieces of the path
+// (corner_prediction.h): the switching function of the apex, extrapolated from the last two
+// states, runs to zero within it.
+TEST_F(PathRecorderTest, TheStepOntoTheFloorIsPredictedAcrossTheContactChange) {
+  ASSERT_EQ(tee_.recorder.kinks.size(), 1u);
+  const int kink_step = tee_.recorder.kinks[0].step;
+  EXPECT_TRUE(tee_.recorder.steps[kink_step - 1].across_contact_change);
+  EXPECT_FALSE(tee_.recorder.steps[kink_step - 3].across_contact_change);
+}
+
 // The formulation that traced the path, given the same steps with the same starts, finds the
-// same states.
+// same states with the same work.
 TEST_F(PathRecorderTest, ReplayingThePathWithItsOwnFormulationReproducesIt) {
   ImplicitFb f;
   Tee replayed;
@@ -73,6 +84,9 @@ TEST_F(PathRecorderTest, ReplayingThePathWithItsOwnFormulationReproducesIt) {
     const State& b = tee_.recorder.steps[k].state;
     EXPECT_LE((a.u - b.u).lpNorm<Eigen::Infinity>(), 1e-12) << "step " << k + 1;
     EXPECT_NEAR(a.lambda, b.lambda, 1e-12) << "step " << k + 1;
+    EXPECT_EQ(replayed.accepted[k].result.counts.iterations,
+              tee_.accepted[k].result.counts.iterations)
+        << "step " << k + 1;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -173,6 +174,44 @@ TEST(RecordsSchemaTest, CellsAreFormattedAsTheirTypeAndQuotedOnlyWhenNeeded) {
     three_d.Write({0, -2.5, false, ""});
   }
   EXPECT_EQ(ReadText(dir / "sample.csv"), "integer,real,flag,text,z\n0,-2.5,false,,-2.5\n");
+  std::filesystem::remove_all(dir);
+}
+
+// The records kept in memory (the Python module without an output directory) are the bytes the
+// file gets, and no file is made.
+TEST(RecordsSchemaTest, RecordsInMemoryAreTheFileSBytes) {
+  const RecordSchema<Sample> schema{
+      "sample.csv",
+      "",
+      "sample",
+      {"test"},
+      {
+          {"real", "a double", [](const Sample& s) -> Cell { return s.real; }},
+          {"text", "a string", [](const Sample& s) -> Cell { return s.text; }},
+      }};
+  const std::vector<Sample> rows{
+      {0, 1.0, false, "x,y"}, {0, -0.0, false, ""}, {0, 1e-7, true, "q"}};
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_records_memory";
+  std::filesystem::create_directories(dir);
+  std::map<std::string, std::string> memory{{"sample.csv", "an earlier run's text"}};
+  {
+    RecordWriter<Sample> file(dir.string(), schema);
+    RecordWriter<Sample> kept(RecordTarget(&memory), schema);
+    for (const Sample& row : rows) {
+      file.Write(row);
+      kept.Write(row);
+    }
+  }
+  EXPECT_EQ(memory.at("sample.csv"), ReadText(dir / "sample.csv"));
+  EXPECT_EQ(memory.size(), 1u);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  {
+    RecordWriter<Sample> kept(RecordTarget(&memory), schema);
+    kept.Write(rows[0]);
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  EXPECT_EQ(memory.at("sample.csv"), "real,text\n1.0,\"x,y\"\n");  // emptied first, as O_TRUNC
   std::filesystem::remove_all(dir);
 }
 

@@ -18,6 +18,19 @@ void InstallInterruptHandlers() {
   std::signal(SIGTERM, OnSignal);
 }
 
+InterruptScope::InterruptScope() {
+  g_interrupted.store(false);
+  struct sigaction action {};
+  action.sa_handler = OnSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, &previous_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &previous_, nullptr);
+  g_interrupted.store(false);
+}
+
 bool InterruptRequested() { return g_interrupted.load(); }
 
 void AcknowledgeInterrupt() { g_interrupted.store(false); }

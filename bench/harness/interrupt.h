@@ -4,6 +4,8 @@
 // kExitInterrupted. The suite driver installs them first thing in main().
 #pragma once
 
+#include <signal.h>
+
 #include <stdexcept>
 
 namespace cb::harness {
@@ -16,6 +18,20 @@ struct Interrupted : std::runtime_error {
 };
 
 void InstallInterruptHandlers();
+
+// For the length of a call from Python (python/module.cc): SIGINT (Ctrl-C, a notebook's
+// interrupt) sets the flag as in the suite driver, so that the run stops the same way; the
+// handler it replaced (Python's) is back afterwards, and the flag is cleared on both ends.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+};
 
 // True once SIGINT or SIGTERM arrived.
 bool InterruptRequested();

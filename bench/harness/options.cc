@@ -216,6 +216,14 @@ std::vector<Option> MakeOptions() {
        nullptr, [](O, S, A* a) { a->overwrite = true; }},
       {"--out", "F.json", kExport, Need::kRequired, false, "the problem file to write", nullptr,
        [](O, S v, A* a) { a->out = v; }},
+      {"--format", "json|fclib", kExport, Need::kOptional, false,
+       "the problem file's format: the suite's JSON (default) or an FCLIB global problem, HDF5 "
+       "with mu = 0 (docs/problem-files.md, \"FCLIB\")",
+       nullptr,
+       [](O o, S v, A* a) {
+         if (v != "json" && v != "fclib") Refuse(o, "must be json or fclib, got '" + v + "'");
+         a->export_format = v;
+       }},
       {"--solver", "NAME", kPathCommands, Need::kOptional, false,
        "the equation solver of implicit-fb, nonsmooth-fb and active-set (default newton)",
        EquationSolverNames, [](O o, S v, A* a) { a->config.solver = Choice(o, v); }},
@@ -359,7 +367,7 @@ std::string ValidList(const Option& o) {
 }
 
 // The problem is given by exactly one of its options; the required options are given.
-void CheckNeeds(Command command, const std::set<std::string>& given) {
+void CheckNeeds(Command command, const std::set<std::string>& given, bool out_optional) {
   std::vector<std::string> problem_given, problem_forms;
   const Option* first_problem_option = nullptr;
   for (const Option& o : Options()) {
@@ -376,6 +384,7 @@ void CheckNeeds(Command command, const std::set<std::string>& given) {
                      ValidList(*first_problem_option));
   }
   for (const Option& o : Options()) {
+    if (out_optional && std::string_view(o.name) == "--out") continue;
     if (Takes(o, command) && o.need == Need::kRequired && !given.count(o.name)) {
       throw UsageError(NameAndValue(o) + " is required" + ValidList(o));
     }
@@ -531,7 +540,8 @@ const std::vector<Option>& Options() {
   return options;
 }
 
-RunArguments ParseArguments(Command command, const std::vector<std::string>& args) {
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args,
+                            bool out_optional) {
   const CommandInfo* info = nullptr;
   for (const CommandInfo& c : Commands()) {
     if (c.command == command) info = &c;
@@ -560,7 +570,7 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     o->parse(*o, flag ? std::string() : args[++i], &a);
     if (a.help) return a;
   }
-  CheckNeeds(command, given);
+  CheckNeeds(command, given, out_optional);
   if (info->operand != nullptr && a.operand.empty()) {
     throw UsageError(std::string(info->operand) + " is required");
   }

@@ -61,8 +61,9 @@ struct RunArguments {
   std::string mode = "replay";            // compare
   std::string reference = "implicit-fb";  // compare
   std::string out;
-  bool overwrite = false;     // run, compare: replace an earlier run's records in `out`
-  bool force = false;         // rerun: run even when the build, a library or an input differs
+  std::string export_format = "json";  // export: json or fclib
+  bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
+  bool force = false;  // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
@@ -117,7 +118,10 @@ std::string NameAndValue(const Option& option);
 
 // The arguments of `command` (the command line after its name), checked: unknown, repeated or
 // missing options and bad values throw UsageError. With --help, returns at once with `help`.
-RunArguments ParseArguments(Command command, const std::vector<std::string>& args);
+// `out_optional`: --out may be left out (the Python module keeps the records in memory then,
+// commands.h).
+RunArguments ParseArguments(Command command, const std::vector<std::string>& args,
+                            bool out_optional = false);
 
 // "a, b, c".
 std::string Join(const std::vector<std::string>& items, const std::string& separator = ", ");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -97,15 +98,28 @@ struct RecordSchema {
   }
 };
 
+// Where the record files go: the files of an output directory, or (the Python module without
+// an output directory, docs/python.md) their texts in memory by file name ("steps.csv"), the
+// same bytes the files would hold.
+struct RecordTarget {
+  RecordTarget(std::string dir) : directory(std::move(dir)) {}
+  RecordTarget(const char* dir) : directory(dir) {}
+  explicit RecordTarget(std::map<std::string, std::string>* texts) : memory(texts) {}
+
+  std::string directory;
+  std::map<std::string, std::string>* memory = nullptr;
+};
+
 // A record file open for writing: DIR/<schema.file> with the schema's header, one row per
 // Write (flushed at once, as CsvWriter does).
 template <typename Data>
 class RecordWriter {
  public:
-  RecordWriter(const std::string& directory, const RecordSchema<Data>& schema, int dimension = 0)
+  RecordWriter(const RecordTarget& target, const RecordSchema<Data>& schema, int dimension = 0)
       : schema_(schema),
         dimension_(dimension),
-        csv_(directory + "/" + schema.file, schema.Header(dimension)) {}
+        csv_(target.directory + "/" + schema.file, schema.Header(dimension),
+             target.memory ? &(*target.memory)[schema.file] : nullptr) {}
 
   void Write(const Data& data) { csv_.Write(schema_.RowOf(data, dimension_)); }
 

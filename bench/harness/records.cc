@@ -7,11 +7,11 @@
 
 namespace cb::harness {
 
-RecordFiles::RecordFiles(const std::string& directory)
-    : steps_(directory, StepsSchema()),
-      iterations_(directory, IterationsSchema()),
-      kinks_(directory, KinksSchema()),
-      critical_(directory, CriticalSchema()) {}
+RecordFiles::RecordFiles(const RecordTarget& target)
+    : steps_(target, StepsSchema()),
+      iterations_(target, IterationsSchema()),
+      kinks_(target, KinksSchema()),
+      critical_(target, CriticalSchema()) {}
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
@@ -87,25 +87,25 @@ std::vector<PairRow> PairRows(const Problem& problem, const State& state, int st
 
 namespace {
 
-void WriteBodyState(const std::string& directory, const Problem& problem, const State& state,
+void WriteBodyState(const RecordTarget& target, const Problem& problem, const State& state,
                     int step) {
-  RecordWriter<NodeRow> solution(directory, SolutionSchema(), problem.body->body().dim());
+  RecordWriter<NodeRow> solution(target, SolutionSchema(), problem.body->body().dim());
   for (const NodeRow& row : NodeRows(problem, state, step, "final")) {
     StopIfInterrupted("writing solution.csv");
     solution.Write(row);
   }
-  RecordWriter<PairRow> contacts(directory, ContactsSchema());
+  RecordWriter<PairRow> contacts(target, ContactsSchema());
   for (const PairRow& row : PairRows(problem, state, step, "final")) {
     StopIfInterrupted("writing contacts.csv");
     contacts.Write(row);
   }
 }
 
-void WriteComplementarityState(const std::string& directory, const ComplementarityModel& model,
+void WriteComplementarityState(const RecordTarget& target, const ComplementarityModel& model,
                                const State& state, int step) {
   Vec w;
   model.InternalForce(state.u, &w);  // M z + q
-  RecordWriter<ComplementarityRow> solution(directory, ComplementaritySolutionSchema());
+  RecordWriter<ComplementarityRow> solution(target, ComplementaritySolutionSchema());
   for (int i = 0; i < model.num_dofs(); ++i) {
     StopIfInterrupted("writing solution.csv");
     solution.Write({step, i, state.u[i], w[i]});
@@ -114,17 +114,17 @@ void WriteComplementarityState(const std::string& directory, const Complementari
 
 }  // namespace
 
-void WriteFinalState(const std::string& directory, const Problem& problem, const State& state,
+void WriteFinalState(const RecordTarget& target, const Problem& problem, const State& state,
                      int step) {
   if (problem.body != nullptr) {
-    WriteBodyState(directory, problem, state, step);
+    WriteBodyState(target, problem, state, step);
   } else if (const auto* lcp = dynamic_cast<const ComplementarityModel*>(problem.model.get())) {
-    WriteComplementarityState(directory, *lcp, state, step);
+    WriteComplementarityState(target, *lcp, state, step);
   }
 }
 
-void WriteParameters(const std::string& directory, const Problem& problem) {
-  RecordWriter<ParameterRow> parameters(directory, ParametersSchema());
+void WriteParameters(const RecordTarget& target, const Problem& problem) {
+  RecordWriter<ParameterRow> parameters(target, ParametersSchema());
   for (const auto& e : problem.parameters.entries()) {
     parameters.Write({problem.name, e.name, e.value, e.doc});
   }

@@ -22,7 +22,7 @@ class RecordFiles {
  public:
   // Opens DIR/steps.csv, DIR/iterations.csv, DIR/kinks.csv and DIR/critical.csv (limit and
   // bifurcation points; the directory must exist).
-  explicit RecordFiles(const std::string& directory);
+  explicit RecordFiles(const RecordTarget& target);
   RecordWriter<AttemptRow>& steps() { return steps_; }
   RecordWriter<IterationRow>& iterations() { return iterations_; }
   RecordWriter<KinkRow>& kinks() { return kinks_; }
@@ -89,11 +89,11 @@ std::vector<PairRow> PairRows(const Problem& problem, const State& state, int st
 
 // The final state (the last accepted one, reached at step `step`): DIR/solution.csv and
 // DIR/contacts.csv for a body, DIR/solution.csv (z and w = M z + q) for an LCP.
-void WriteFinalState(const std::string& directory, const Problem& problem, const State& state,
+void WriteFinalState(const RecordTarget& target, const Problem& problem, const State& state,
                      int step);
 
 // DIR/parameters.csv: the problem's parameters, reconstruction choices included, then the
 // model's sizes.
-void WriteParameters(const std::string& directory, const Problem& problem);
+void WriteParameters(const RecordTarget& target, const Problem& problem);
 
 }  // namespace cb::harness

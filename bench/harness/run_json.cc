@@ -102,6 +102,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
                            {"found_by_copy", input.found_by_copy}});
   }
   if (!run.rerun_of.empty()) j["rerun_of"] = run.rerun_of;
+  j["problem_notes"] = run.problem_notes;
   j["settings"] = run.settings;
   j["formulations"] = run.formulations;
   if (run.command == "compare") {

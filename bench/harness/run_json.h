@@ -24,6 +24,7 @@ struct RunJson {
   std::string command;                          // "run" or "compare"
   std::string problem;                          // the problem's name ("" if not loaded)
   std::string problem_source;                   // "--problem NAME" or "--problem-file F"
+  std::vector<std::string> problem_notes;       // what reading the file changed (Problem::notes)
   std::map<std::string, std::string> settings;  // --set
   std::vector<std::string> formulations;
   std::string reference;  // compare: the reference formulation ("" for free mode)

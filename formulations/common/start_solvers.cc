@@ -2,18 +2,25 @@
 
 namespace cb {
 
-SolverOptions SolverOptionsFor(StartKind kind, const SolverOptions& options) {
+bool TakesNonmonotoneSearch(const StartPoint& start) {
+  return start.kind == StartKind::kCold || start.across_contact_change;
+}
+
+SolverOptions SolverOptionsFor(const StartPoint& start, const SolverOptions& options) {
   SolverOptions chosen = options;
-  if (kind != StartKind::kCold) chosen.nonmonotone_window = 1;
+  if (!TakesNonmonotoneSearch(start)) chosen.nonmonotone_window = 1;
   return chosen;
 }
 
 StartSolvers::StartSolvers(const std::string& solver, const SolverOptions& options)
-    : cold_(MakeEquationSolver(solver, SolverOptionsFor(StartKind::kCold, options))),
-      warm_(MakeEquationSolver(solver, SolverOptionsFor(StartKind::kWarm, options))) {}
+    : nonmonotone_(MakeEquationSolver(solver, options)), monotone_([&] {
+        SolverOptions monotone = options;
+        monotone.nonmonotone_window = 1;
+        return MakeEquationSolver(solver, monotone);
+      }()) {}
 
-EquationSolver& StartSolvers::For(StartKind kind) const {
-  return kind == StartKind::kCold ? *cold_ : *warm_;
+EquationSolver& StartSolvers::For(const StartPoint& start) const {
+  return TakesNonmonotoneSearch(start) ? *nonmonotone_ : *monotone_;
 }
 
 }  // namespace cb

@@ -8,23 +8,27 @@
 
 namespace cb {
 
-// The equation solvers of one formulation, one for each start kind. A cold start gets the
-// options as given, with the nonmonotone line search of SolverOptions::nonmonotone_window that
-// takes P1's cold solves through the stretch where the full Newton step raises the merit. A warm
-// start is near its answer, so it keeps the monotone test (window 1): its 2-3 iterations per
-// step are unchanged, and so is every warm path that depends on its last digits, such as P2's
-// branch switch at C (docs/findings.md).
-// The options of the solver for a start of `kind` (see StartSolvers), from the formulation's.
-SolverOptions SolverOptionsFor(StartKind kind, const SolverOptions& options);
+// The equation solvers of one formulation: one with the options as given, with the nonmonotone
+// line search of SolverOptions::nonmonotone_window, and one with the monotone test (window 1).
+// The nonmonotone one takes the starts that are far from their answer through the stretch where
+// the full Newton step raises the merit: cold starts (P1's cold solves), and warm starts across a
+// contact change (StartPoint::across_contact_change), whose answer lies just past a corner of
+// the path (P3's steps that crept for up to 50 iterations; docs/findings.md). Every other warm
+// start is near its answer and keeps the monotone test: its 2-3 iterations per step are
+// unchanged, and so is every warm path that depends on its last digits, such as P2's branch
+// switch at C.
+bool TakesNonmonotoneSearch(const StartPoint& start);
+// The options of the solver for `start` (see above), from the formulation's.
+SolverOptions SolverOptionsFor(const StartPoint& start, const SolverOptions& options);
 
 class StartSolvers {
  public:
   StartSolvers(const std::string& solver, const SolverOptions& options);
-  EquationSolver& For(StartKind kind) const;
+  EquationSolver& For(const StartPoint& start) const;
 
  private:
-  std::unique_ptr<EquationSolver> cold_;
-  std::unique_ptr<EquationSolver> warm_;
+  std::unique_ptr<EquationSolver> nonmonotone_;
+  std::unique_ptr<EquationSolver> monotone_;
 };
 
 }  // namespace cb

@@ -69,7 +69,7 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
   const StepEquationLayout& l = system.layout();
   Vec x = initial.x;
 
-  RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result);
+  RunStepEquationSolver(solvers_.For(start), system, &x, controls, result);
   result->details["gamma"] = std::to_string(initial.gamma);
   result->details["rho0"] = std::to_string(initial.x[l.rho()]);
   result->details["rho"] = std::to_string(x[l.rho()]);

@@ -87,7 +87,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
     seen.push_back(std::move(a));
   };
   SolverSummary summary =
-      RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result, on_iteration);
+      RunStepEquationSolver(solvers_.For(start), system, &x, controls, result, on_iteration);
 
   const StepConstraint& c = step.constraint;
   const bool restart = options_.restart && summary.status != Status::kConverged &&
@@ -154,7 +154,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
     const std::string first_message = result->message;
     seen.push_back(active_set(x));
     summary =
-        RunStepEquationSolver(solvers_.For(start.kind), system, &x, controls, result, on_iteration);
+        RunStepEquationSolver(solvers_.For(start), system, &x, controls, result, on_iteration);
     result->counts.iterations += first.iterations;
     result->counts.residual_evals += first.residual_evals;
     result->counts.jacobian_evals += first.jacobian_evals;

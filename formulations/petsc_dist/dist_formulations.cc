@@ -135,7 +135,7 @@ class DistFormulation final : public Formulation {
     const StepProblem& local = steps_.ContactOnlyStep(
         step, StepEquationLayout{step.num_dofs(), step.num_pairs(), has_rho}.size());
     // The serial solver's settings for this start (its line search's window; StartSolvers).
-    const SolverOptions solver = SolverOptionsFor(start.kind, options_.solver_options);
+    const SolverOptions solver = SolverOptionsFor(start, options_.solver_options);
     Vec x;
     switch (kind_) {
       case DistKind::kImplicitFb: {

@@ -873,6 +873,8 @@ def write(results_dir):
             "figures to quote. For the NLopt formulations `iterations` counts objective "
             "evaluations (NLopt has no iteration counter).", ""]
     sets = list(comparison_sets(results_dir))
+    from plotlib import headlines  # here: it uses this module's helpers
+    out += headlines.section(results_dir, sets)
     if not sets:
         out += ["No comparison records under `compare/` (run `scripts/run_compare.sh`).", ""]
     for name, runs, steps in sets:

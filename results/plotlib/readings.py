@@ -16,6 +16,7 @@ histogram against Table 2 with a distance between the two, each count also resco
 report-like stopping test `REPORT_LIKE_TOL` from the recorded residual histories.
 """
 import os
+import shutil
 
 import numpy as np
 import pandas as pd
@@ -155,9 +156,11 @@ def p2_measures(run):
 
 def counts_at(run, tol):
     """Iterations per accepted step at the stopping test tol: as recorded at the suite's own,
-    rescored at any other."""
+    rescored at any other (from iterations.csv, or from the thinned records' rescored.csv)."""
     if tol == SUITE_TOL:
         return rep._accepted(run)["iterations"].astype(int)
+    if run["iterations"] is None and run.get("rescored") is not None:
+        return run["rescored"].set_index("step")[_rescored_column(tol)].astype(int)
     return rescored_iterations(run["steps"], run["iterations"], tol)
 
 
@@ -175,6 +178,52 @@ def table_2_measures(run, tol):
     hist = binned(counts_at(run, tol))
     return {"hist": hist, "distance": table_distance(
         hist, {str(k): v for k, v in rep.REPORT_TABLE_2.items()})}
+
+
+# --- the thinned records -----------------------------------------------------------------------
+
+# What the section reads of a run, kept by thin_run: the accepted steps' columns below, the
+# kinks, critical points, cells and parameters whole, run.json, and the iterations rescored at
+# every stopping test the section uses (rescored.csv instead of iterations.csv).
+THIN_STEP_COLUMNS = ("problem", "solver", "step", "lambda", "control_disp", "iterations",
+                     "verified", "attempt", "accepted", "constraint", "branch", "branch_switch")
+THIN_KEPT_FILES = ("kinks.csv", "critical.csv", "cells.csv", "parameters.csv", "run.json",
+                   "steps.csv", "rescored.csv")
+
+
+def _rescored_column(tol):
+    return "iterations_at_%g" % tol
+
+
+def thin_run(run_dir):
+    """Rewrites the records of one readings run in place to what the section reads (about a
+    tenth of them): steps.csv's accepted rows and THIN_STEP_COLUMNS, rescored.csv (each
+    accepted step's iterations at every stopping test of SWEEP and REPORT_LIKE_TOL) instead
+    of iterations.csv; the other files of THIN_KEPT_FILES as they are; the rest removed. The
+    values are the recorded text, so the section reads the same numbers as from the records."""
+    steps_path = os.path.join(run_dir, "steps.csv")
+    if not os.path.isfile(steps_path) or os.path.getsize(steps_path) == 0:
+        return  # a run that recorded no step: nothing to thin, what it wrote is kept
+    text = pd.read_csv(steps_path, dtype=str, keep_default_na=False)
+    if os.path.isfile(os.path.join(run_dir, "iterations.csv")):
+        run = rep._run(run_dir)
+        tols = sorted(set(SWEEP + (REPORT_LIKE_TOL,)) - {SUITE_TOL})
+        rescored = pd.DataFrame({_rescored_column(t): rescored_iterations(
+            run["steps"], run["iterations"], t) for t in tols})
+        rescored.index.name = "step"
+        rescored.to_csv(os.path.join(run_dir, "rescored.csv"))
+    text[text["accepted"] == "true"][list(THIN_STEP_COLUMNS)].to_csv(steps_path, index=False)
+    for name in os.listdir(run_dir):
+        if name not in THIN_KEPT_FILES:
+            path = os.path.join(run_dir, name)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+
+
+def thin_records(results_dir):
+    """thin_run on every run of the readings study's index."""
+    index = _index(results_dir)
+    for _, row in (index.iterrows() if index is not None else []):
+        thin_run(os.path.join(results_dir, "readings", row["dir"]))
 
 
 # --- the section -------------------------------------------------------------------------------

@@ -49,7 +49,7 @@ def _run(results_dir, *parts):
     if not os.path.isdir(d):
         return None
     files = ["steps", "iterations", "kinks", "critical", "snapshots", "snapshot_contacts",
-             "cells", "parameters"]
+             "cells", "parameters", "rescored"]
     run = {f: _read(os.path.join(d, f + ".csv")) for f in files} | {"dir": d}
     path = os.path.join(d, "parameters.csv")
     if os.path.exists(path):  # values as written ("50", not 50.0)
@@ -410,6 +410,42 @@ def _path_runs(results_dir, problem, heading, lines):
     return runs, r, kinks
 
 
+def branch_switch(run, c):
+    """What the records say of the switch at the bifurcation point c (a critical.csv row or
+    None): (switched, the first accepted step that left c onto another branch or None, the
+    message critical.csv gives c). Switched only when critical.csv marks c switched and an
+    accepted step records the switch."""
+    acc = _accepted(run)
+    left = acc[acc["branch_switch"] == 1] if acc is not None and len(acc) else None
+    step = left.iloc[0] if left is not None and len(left) else None
+    if c is None:
+        return False, step, ""
+    return bool(c["switched"]) and step is not None, step, str(c["message"])
+
+
+def _d_cell(d, switched):
+    """The suite's cell of the row "D, on the asymmetric branch": the last state when the path
+    switched onto another branch and ends on it, else why D is not reached."""
+    where = "lambda = %.4f, u_a = %.4f m" % (d["lambda"], d["control_disp"])
+    if switched and int(d["branch"]) != 0:
+        return "%s (the last state, branch %d, after the switch at C)" % (where, d["branch"])
+    if switched:
+        return "not reached: the path switched at C but ends back on branch 0 (%s)" % where
+    return ("not reached: no branch switch, the path ends on branch %d, the branch through B "
+            "and C (the last state: %s)" % (d["branch"], where))
+
+
+def _switch_sentence(c, switched, d, message):
+    if c is None:
+        return "No bifurcation point was located on the path, so no branch was switched onto."
+    if switched and d is not None and int(d["branch"]) != 0:
+        return ("At C the path switched onto branch %d and ends on it, at D." % d["branch"])
+    if switched:
+        return "At C the path switched branch, but it ends on branch 0."
+    return ("At C the branch switch did not happen (%s), so the path ends on branch 0 and D, "
+            "the report's state on the asymmetric branch, is not reached." % message)
+
+
 def p2(results_dir, lines):
     found = _path_runs(results_dir, "arch-flat",
                        "## P2 `arch-flat`: large deformation, two flat obstacles (report 5.2)",
@@ -420,11 +456,13 @@ def p2(results_dir, lines):
     acc = _accepted(r)
     limits = _critical(r, "limit")
     bif = _critical(r, "bifurcation")
-    switched = bif[bif["switched"] == 1] if bif is not None else None
+    switched_rows = bif[bif["switched"] == 1] if bif is not None else None
     b = limits.iloc[0] if limits is not None and len(limits) else None
-    c = switched.iloc[0] if switched is not None and len(switched) else (
+    c = switched_rows.iloc[0] if switched_rows is not None and len(switched_rows) else (
         bif.iloc[0] if bif is not None and len(bif) else None)
-    d = acc.iloc[-1] if acc is not None and len(acc) else None
+    last = acc.iloc[-1] if acc is not None and len(acc) else None
+    switched, _, message = branch_switch(r, c)
+    at_d = switched and last is not None and int(last["branch"]) != 0
     lines += ["| quantity | the report | the suite (Newton) |", "|---|---|---|",
               "| d | %d | %s |" % (REPORT_P2["d"], _parameter(r, "num_dofs", "?")),
               "| nc | %d | %s |" % (REPORT_P2["nc"], _parameter(r, "num_pairs", "?")),
@@ -440,17 +478,14 @@ def p2(results_dir, lines):
         lines.append("| C, bifurcation point | after B | "
                      "lambda = %.6f, u_a = %.4f m, step %d, %s |" % (
                          c["lambda"], c["control_disp"], c["step"],
-                         "branch switched" if c["switched"] else "not switched"))
-    if d is not None:
-        lines.append("| D, on the asymmetric branch | beyond C | "
-                     "lambda = %.4f, u_a = %.4f m (the last state, branch %d) |" % (
-                         d["lambda"], d["control_disp"], d["branch"]))
+                         "branch switched" if switched else "not switched"))
+    if last is not None:
+        lines.append("| D, on the asymmetric branch | beyond C | %s |" % _d_cell(last, switched))
     lines.append("")
     if b is not None and c is not None:
         c_first = (c["step"], c["lambda"]) < (b["step"], b["lambda"])
-        lines.append("The suite's B is %s; C lies a hair %s B (%.1e apart in lambda: the "
-                     "buckling of a panel near each support, a symmetric and an antisymmetric "
-                     "combination of two weakly coupled modes). The report's B is a kink made by "
+        lines.append("The suite's B is %s; C lies a hair %s B (%.1e apart in lambda; "
+                     "docs/findings.md says why). The report's B is a kink made by "
                      "a contact change with C after it, and it locates %d kinks against the "
                      "suite's %d. Whether another reading of the report's figure gives that, and "
                      "how the kinks and Table 1's counts depend on the arc length, the load unit "
@@ -460,16 +495,28 @@ def p2(results_dir, lines):
                          "change within a step of it)", "before" if c_first else "past",
                          abs(c["lambda"] - b["lambda"]), REPORT_P2["kinks"], kinks))
         lines.append("")
-    labels = {"B": (b, "s"), "C": (c, "D"), "D": (d, "o")}
+    lines += [_switch_sentence(c, switched, last, message), ""]
+    # The last state is D only when the path switched and ends on the other branch.
+    end_key = "D" if at_d else "end"
+    labels = {"B": (b, "s"), "C": (c, "D"), end_key: (last, "o")}
+    shown = [what for what, row in (("limit point B", b), ("bifurcation point C", c)) if
+             row is not None]
+    shown.append("the state D on branch %d after the switch" % last["branch"] if at_d else
+                 "the last state, on branch %d (D not reached: %s)" % (
+                     last["branch"], "no switch" if not switched else "back on branch 0")
+                 if last is not None else "no state")
     path = _path_figure(results_dir, r, "P2 arch-flat, implicit-fb, Newton: equilibrium path "
-                        "with kinks, limit point B, bifurcation point C, asymmetric branch D",
-                        "p2_path.png", labels, inset=("B", "C"))
+                        "with kinks, %s" % ", ".join(shown), "p2_path.png", labels,
+                        inset=("B", "C"))
     lines += ["![P2 path](%s)" % path, ""]
+    where = ("D (branch %d)" % last["branch"] if at_d else
+             "the last state (branch %d; D not reached)" % last["branch"]) \
+        if last is not None else ""
     path = _deformed_figure(results_dir, r, "final", "P2 arch-flat, implicit-fb, Newton: "
-                            "deformed configuration at D (red) over the undeformed (grey)",
-                            "p2_deformed_D.png")
+                            "deformed configuration at %s (red) over the undeformed (grey)" % where,
+                            "p2_deformed_last.png")
     if path:
-        lines += ["![P2 deformed at D](%s)" % path, ""]
+        lines += ["![P2 deformed at %s](%s)" % ("D" if at_d else "the last state", path), ""]
     lines += ["Iterations per accepted step (the form of the report's Table 1; the report: 2 "
               "iterations at 273 steps, at most 4 at almost all steps):", ""]
     lines += _histogram_table({SOLVER_LABEL[s]: _histogram(_accepted(x)) for s, x in runs.items()})
@@ -512,7 +559,9 @@ def p3(results_dir, lines):
                  "lambda = %.4f, u_a = %.4f m |" % (c["lambda"], c["control_disp"]))
     lines.append("")
     path = _path_figure(results_dir, r, "P3 arch-curved, implicit-fb, Newton: equilibrium path "
-                        "with kinks, nonsmooth limit point B and end point C", "p3_path.png",
+                        "with kinks, %send point C" % (
+                            "nonsmooth limit point B and " if b is not None else
+                            "no nonsmooth limit point, "), "p3_path.png",
                         {"B": (b, "s"), "C": (c, "o")})
     lines += ["![P3 path](%s)" % path, ""]
     path = _deformed_figure(results_dir, r, "final", "P3 arch-curved, implicit-fb, Newton: "

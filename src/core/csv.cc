@@ -44,10 +44,14 @@ std::string Quote(std::string_view text) {
 
 }  // namespace
 
-CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
-    : path_(path), columns_(std::move(columns)) {
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot open '" + path + "' for writing");
+CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, std::string* memory)
+    : path_(path), columns_(std::move(columns)), memory_(memory) {
+  if (memory_ != nullptr) {
+    memory_->clear();  // as O_TRUNC empties a file
+  } else {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot open '" + path + "' for writing");
+  }
   Row header;
   for (const auto& c : columns_) header << c;
   try {
@@ -102,6 +106,10 @@ void CsvWriter::Write(const Row& row) {
     line += row.fields_[i];
   }
   line += '\n';
+  if (memory_ != nullptr) {
+    memory_->append(line);
+    return;
+  }
   // Unbuffered writes of a whole line: an interrupted run leaves only whole lines, and a write
   // that fails part-way is undone here rather than by a later flush of a buffer.
   std::size_t written = 0;

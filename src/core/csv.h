@@ -33,8 +33,11 @@ class WriteError : public std::runtime_error {
 class CsvWriter {
  public:
   // Opens `path` for writing and writes the header. Throws std::runtime_error naming the path
-  // when the file cannot be opened, WriteError when the header cannot be written.
-  CsvWriter(const std::string& path, std::vector<std::string> columns);
+  // when the file cannot be opened, WriteError when the header cannot be written. With
+  // `memory`, no file is opened: the same lines go to *memory (emptied first), and `path` only
+  // names the records (the Python module's records without an output directory).
+  CsvWriter(const std::string& path, std::vector<std::string> columns,
+            std::string* memory = nullptr);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
@@ -66,6 +69,7 @@ class CsvWriter {
  private:
   std::string path_;
   std::vector<std::string> columns_;
+  std::string* memory_ = nullptr;
   int fd_ = -1;
   long long whole_lines_bytes_ = 0;  // the file's length up to its last whole line
 };

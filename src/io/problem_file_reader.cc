@@ -10,10 +10,12 @@
 #include <sstream>
 
 #include "io/directions.h"
+#include "io/fclib_file.h"
 #include "io/gmsh.h"
 #include "io/input_file.h"
 #include "io/json_node.h"
 #include "io/problem_file.h"
+#include "io/problem_name.h"
 #include "model/complementarity_model.h"
 #include "model/obstacle.h"
 #include "model/plane_stress_q4.h"
@@ -83,16 +85,6 @@ void ReadVersion(const JsonNode& root) {
   if (auto v = root.Optional("version")) {
     if (v->Integer() != 1) v->Fail("only version 1 is known, got " + std::to_string(v->Integer()));
   }
-}
-
-// A problem's name becomes file names (vtk/NAME.pvd, vtk/NAME_0000.vtu): only characters that
-// keep it one name inside the output directory and need no quoting in a path or in XML.
-bool IsFileSafeName(const std::string& name) {
-  if (name.empty() || name.front() == '.' || name.front() == '-') return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-           c == '_' || c == '+' || c == '-';
-  });
 }
 
 std::string OptionalString(const JsonNode& root, const char* key, const std::string& fallback) {
@@ -981,6 +973,7 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
 
 Problem LoadProblemFile(const std::string& path,
                         const std::map<std::string, std::string>& settings) {
+  if (IsFclibPath(path)) return LoadFclibFile(path, settings);
   const std::string text = ReadInputFile(path, "problem file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);

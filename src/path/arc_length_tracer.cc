@@ -4,11 +4,17 @@
 #include <string>
 #include <utility>
 
+#include "path/corner_prediction.h"
 #include "path/stability.h"
 #include "path/step_solve.h"
 #include "path/turn_back.h"
 
 namespace cb {
+namespace {
+
+constexpr char kKinkNotLocated[] = "; not accepted: a kink within the step was not located";
+
+}  // namespace
 
 ArcLengthTracer::ArcLengthTracer(const ContactModel& model, const ContactScales& scales,
                                  Formulation& formulation, const PathOptions& options,
@@ -98,13 +104,31 @@ std::unique_ptr<StepLeg> ArcLengthTracer::NextLeg() const {
                                            options_.lambda_weight);
 }
 
-// The turn-back guard's trail: x_k - heading (the state or kink the heading comes from), then
-// the accepted states behind, as increments from x_k.
+// The turn-back guard's trail: x_k - heading (the state or kink the heading comes from; none
+// on a kink stepped onto), then the accepted states behind, as increments from x_k. While those
+// reach back to the path's first state, the trail goes on beyond it for twice the nominal theta
+// along the first chord: the path through the first state goes on there too (to negative load from
+// the unloaded state), and an answer beyond the start is as much a return as one onto the path
+// traced (a cold-started Scholtes step of ipopt-mpcc on the small arch went there at theta 0.2,
+// 0.4, 0.55 and 0.6, and the path went on in negative load, every step verified).
 std::vector<Increment> ArcLengthTracer::Trail() const {
   if (summary_.accepted_steps == 0) return {};
   const State& x = at_.accepted.state;
-  std::vector<Increment> trail{{-at_.heading.du, -at_.heading.dlambda}};
+  // On a kink stepped onto, the heading is the direction that leaves it, from no point behind.
+  std::vector<Increment> trail;
+  if (at_.on_kink < 0) trail.push_back({-at_.heading.du, -at_.heading.dlambda});
   for (const State& point : at_.behind) trail.push_back({point.u - x.u, point.lambda - x.lambda});
+  if (at_.behind_reaches_start && !at_.behind.empty()) {
+    const State& start = at_.behind.back();
+    const State& next = at_.behind.size() > 1 ? at_.behind[at_.behind.size() - 2] : x;
+    const double chord =
+        HNorm(start.u - next.u, start.lambda - next.lambda, options_.lambda_weight);
+    if (chord > 0.0) {
+      const double beyond = 2.0 * options_.arc_length / chord;
+      trail.push_back({start.u - x.u + (start.u - next.u) * beyond,
+                       start.lambda - x.lambda + (start.lambda - next.lambda) * beyond});
+    }
+  }
   return trail;
 }
 
@@ -115,6 +139,7 @@ void ArcLengthTracer::KeepBehind(const StepAttempt& attempt) {
   constexpr std::size_t kMaxBehind = 32;
   if (attempt.branch_switch) {
     at_.behind.clear();
+    at_.behind_reaches_start = false;
     return;
   }
   at_.behind.push_front(at_.accepted.state);
@@ -128,19 +153,24 @@ void ArcLengthTracer::KeepBehind(const StepAttempt& attempt) {
     length += HNorm(a.u - b.u, a.lambda - b.lambda, w);
     ++keep;
   }
+  at_.behind_reaches_start = at_.behind_reaches_start && keep == at_.behind.size();
   at_.behind.resize(keep);
 }
 
-// Reports every rejected attempt; the accepted one is reported by Accept, after its kinks. A
-// verified step off a bifurcation point within which a kink cannot be located is cut back too
-// while cut-backs remain (a shorter step brackets the kink more closely, and a failed switch
-// leaves the path on its branch); the last one is accepted with its kink recorded as not
-// located, and the path then ends as failed, as any step with such a kink does.
+// Reports every rejected attempt, in attempt order, once the step is decided; the accepted one
+// is reported by Accept, after its kinks. A verified attempt within which a kink cannot be
+// located is cut back too (a shorter step brackets the kink more closely, and on P2's branch D
+// at theta 0.5 that locates it); when no cut-back is accepted, the first such attempt is taken
+// with its kink recorded as not located, and the path then ends as failed once its steps are
+// done.
 ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const StepLeg& leg,
                                                               StepAttempt* attempt,
                                                               LocatedKinks* kinks) {
   const int per_theta = leg.predictions_per_arc_length();
   const int attempts = per_theta * (options_.max_cutbacks + 1);
+  std::vector<StepAttempt> rejected;
+  std::optional<StepAttempt> unlocated;  // the first verified attempt with a kink not located
+  LocatedKinks unlocated_kinks;
   for (int index = 0; index < attempts; ++index) {
     *attempt = Attempt(step, index, leg);
     if (attempt->result.status == Status::kStoppedByCaller) {
@@ -148,30 +178,66 @@ ArcLengthTracer::Outcome ArcLengthTracer::AttemptWithCutbacks(int step, const St
       // happens to pass the verdict: the path stops before the step (the records and the
       // summary's accepted_steps agree; tests/interrupt_test.cc).
       attempt->accepted = false;
-      observer_.OnAttempt(*attempt);
+      rejected.push_back(*attempt);
+      ReportRejected(std::move(rejected), std::move(unlocated));
       return Outcome::kStoppedByCaller;
     }
     if (attempt->accepted) {
-      *kinks = LocateKinks(leg, *attempt);
-      if (kinks->of_step.not_located == 0 || !leg.switches_branch() || index + 1 == attempts) {
+      LocatedKinks located = LocateKinks(leg, *attempt);
+      if (located.of_step.not_located == 0) {
+        *kinks = std::move(located);
+        ReportRejected(std::move(rejected), std::move(unlocated));
         return Outcome::kAccepted;
       }
       attempt->accepted = false;
-      attempt->result.message += "; not accepted: a kink within the step was not located";
+      if (!unlocated) {
+        unlocated = *attempt;
+        unlocated_kinks = std::move(located);
+        if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
+        continue;
+      }
+      attempt->result.message += kKinkNotLocated;
     }
-    observer_.OnAttempt(*attempt);
+    rejected.push_back(*attempt);
     if ((index + 1) % per_theta == 0) next_.theta *= 0.5;
   }
+  if (unlocated) {
+    *attempt = std::move(*unlocated);
+    attempt->accepted = true;
+    *kinks = std::move(unlocated_kinks);
+    next_.theta = attempt->arc_length;
+    ReportRejected(std::move(rejected), std::nullopt);
+    return Outcome::kAccepted;
+  }
+  ReportRejected(std::move(rejected), std::nullopt);
   return Outcome::kRejected;
+}
+
+// The rejected attempts of a step, with the attempt held back for its kink not located when a
+// later one was taken, in attempt order.
+void ArcLengthTracer::ReportRejected(std::vector<StepAttempt> rejected,
+                                     std::optional<StepAttempt> held) {
+  if (held) {
+    held->result.message += kKinkNotLocated;
+    rejected.push_back(std::move(*held));
+  }
+  std::stable_sort(
+      rejected.begin(), rejected.end(),
+      [](const StepAttempt& a, const StepAttempt& b) { return a.attempt < b.attempt; });
+  for (const StepAttempt& a : rejected) observer_.OnAttempt(a);
 }
 
 StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   const State& base = leg.origin().state;
   const double theta = next_.theta;
   StepProblem problem{&model_, base, leg.Constraint(index, theta, options_.lambda_weight), scales_};
-  Increment prediction = leg.Predict(index, theta);
   StartPoint start;
   start.kind = options_.start;
+  Increment prediction = leg.Predict(index, theta);
+  if (std::optional<Increment> bent = BentAtContactChange(leg, prediction)) {
+    prediction = std::move(*bent);
+    start.across_contact_change = true;
+  }
   start.du = std::move(prediction.du);
   start.dlambda = prediction.dlambda;
   start.r = base.r;  // (40)
@@ -190,11 +256,21 @@ StepAttempt ArcLengthTracer::Attempt(int step, int index, const StepLeg& leg) {
   }
   attempt.predicted_du = start.du;
   attempt.predicted_dlambda = start.dlambda;
+  attempt.across_contact_change = start.across_contact_change;
   RecordJudgedStep(SolveAndJudge(formulation_, problem, start, options_), &attempt);
   ++summary_.attempts;
   attempt.reversed = leg.Reversed(attempt.result.point, theta);
   attempt.accepted = SolvedAndVerified(attempt.result, attempt.verdict) && !attempt.reversed;
   return attempt;
+}
+
+// The corner prediction (corner_prediction.h) of a step along the branch, when kinks are
+// located and the path has a state behind it to extrapolate the switching functions from.
+std::optional<Increment> ArcLengthTracer::BentAtContactChange(const StepLeg& leg,
+                                                              const Increment& prediction) const {
+  if (leg.switches_branch() || !options_.locate_kinks || at_.behind.empty()) return std::nullopt;
+  return CornerPrediction(model_, scales_, at_.behind.front(), leg.origin().state, prediction,
+                          options_.lambda_weight);
 }
 
 // Every attempt on the planes off the bifurcation point failed the verdict: say so, and go on along

@@ -46,6 +46,7 @@ class ArcLengthTracer {
     Increment heading;
     int branch = 0;
     std::deque<State> behind;
+    bool behind_reaches_start = true;  // `behind` ends at the path's first state
     int on_kink = -1;  // the pair whose kink the state is, after a step onto a kink ahead
   };
 
@@ -70,7 +71,10 @@ class ArcLengthTracer {
 
   Outcome AttemptWithCutbacks(int step, const StepLeg& leg, StepAttempt* attempt,
                               LocatedKinks* kinks);
+  void ReportRejected(std::vector<StepAttempt> rejected, std::optional<StepAttempt> held);
   StepAttempt Attempt(int step, int index, const StepLeg& leg);
+  std::optional<Increment> BentAtContactChange(const StepLeg& leg,
+                                               const Increment& prediction) const;
   void AbandonBranchSwitch();
   bool StepOntoKinkAhead(int step, const StepLeg& leg, int attempts);
   void EnterNewBranch();

@@ -33,8 +33,6 @@ class KinkAheadFinder {
                                 const Increment& heading, double reach) const;
 
  private:
-  bool LeavingDirection(const State& kink, int pair, bool closed_after, Increment* leave) const;
-
   const ContactModel& model_;
   const ContactScales& scales_;
   const KinkLocator& locator_;

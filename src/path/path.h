@@ -58,6 +58,7 @@ struct StepAttempt {
   double arc_length = 0.0;  // theta used (arc-length steps)
   Vec predicted_du;         // the predicted increment the warm start was given
   double predicted_dlambda = 0.0;
+  bool across_contact_change = false;  // the prediction was bent at a contact change
   StepResult result;
   Verdict verdict;
   bool reversed = false;  // the answer turned back on the path (the guard rejected it)

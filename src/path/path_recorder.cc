@@ -11,6 +11,7 @@ void PathRecorder::OnAttempt(const StepAttempt& attempt) {
   step.increment = attempt.result.point;
   step.prediction.du = attempt.predicted_du;
   step.prediction.dlambda = attempt.predicted_dlambda;
+  step.across_contact_change = attempt.across_contact_change;
   step.arc_length = attempt.arc_length;
   step.kind = attempt.kind;
   step.switch_origin = attempt.switch_origin;

@@ -11,10 +11,11 @@ namespace cb {
 
 // One accepted step.
 struct RecordedStep {
-  State state;              // the state after the step
-  StepPoint increment;      // (du, r, dlambda) of the step
-  StepPoint prediction;     // the predicted increment (du, dlambda) its warm start was given
-  double arc_length = 0.0;  // theta it was taken with (arc-length steps)
+  State state;           // the state after the step
+  StepPoint increment;   // (du, r, dlambda) of the step
+  StepPoint prediction;  // the predicted increment (du, dlambda) its warm start was given
+  bool across_contact_change = false;  // that prediction was bent at a contact change
+  double arc_length = 0.0;             // theta it was taken with (arc-length steps)
   ConstraintKind kind = ConstraintKind::kArcLength;
   // kHyperplane: the bifurcation point the step left from and its plane's unit normal.
   std::optional<State> switch_origin;

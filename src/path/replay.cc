@@ -36,6 +36,7 @@ StartPoint ReplayedStart(const StepProblem& step, const PathRecorder& reference,
   start.r = step.base.r;
   start.du = reference.steps[k - 1].prediction.du;
   start.dlambda = reference.steps[k - 1].prediction.dlambda;
+  start.across_contact_change = reference.steps[k - 1].across_contact_change;
   return start;
 }
 

@@ -34,6 +34,9 @@ struct Problem {
   int control_dof = -1;     // the displacement recorded as control_disp (-1: none)
   std::string control_label;
   Parameters parameters;  // as used to build it
+  // What reading the problem changed in it, one sentence each (an FCLIB file's friction
+  // dropped, its M symmetrised); run.json records them. Empty for a problem read as written.
+  std::vector<std::string> notes;
   // A problem file's own names, which the records use: each node's id (a Gmsh node's tag) and
   // each obstacle's id, by the model's 0-based index. Empty for a named problem, whose
   // records number nodes and obstacles from 0.

@@ -22,12 +22,16 @@ const char* ToString(StartKind kind);
 //         step's size, or the tangent predictor on the first step), `r` the reactions of the
 //         known state; `warm_state` the previous step's StepResult::warm_state, if any.
 //  kCold: a fixed start that does not use the previous step (each formulation documents it).
+// `across_contact_change`: the prediction was bent at a contact change it runs across (the
+// corner prediction, src/path/corner_prediction.h); the answer lies just past a corner of the
+// path, where a solver's monotone line search creeps (formulations/common/start_solvers.h).
 struct StartPoint {
   StartKind kind = StartKind::kWarm;
   Vec du;
   double dlambda = 0.0;
   Vec r;
   std::any warm_state;
+  bool across_contact_change = false;
 };
 
 struct SolveCounts {

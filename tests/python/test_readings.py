@@ -2,7 +2,9 @@
 out by hand. Run: /usr/bin/python3 -m unittest discover -s tests/python."""
 import math
 import os
+import shutil
 import sys
+import tempfile
 import unittest
 
 import pandas as pd
@@ -156,3 +158,38 @@ class WhatTheReadingsShow(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+P2_RECORDS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "results",
+                          "arch-flat", "newton")
+
+
+@unittest.skipUnless(os.path.isdir(P2_RECORDS), "no committed P2 records")
+class ThinnedRecords(unittest.TestCase):
+    """thin_run keeps what the section reads: the committed P2 records (full, as a reading's run
+    writes them) give the same measures before and after thinning, at every stopping test."""
+
+    def test_the_measures_survive_thinning(self):
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        run_dir = os.path.join(tmp, "run")
+        shutil.copytree(P2_RECORDS, run_dir)
+        full = r.rep._run(tmp, "run")
+        r.thin_run(run_dir)
+        thin = r.rep._run(tmp, "run")
+        self.assertIsNone(thin["iterations"])
+        self.assertEqual(sorted(os.listdir(run_dir)), sorted(r.THIN_KEPT_FILES))
+        self.assertTrue(thin["steps"]["accepted"].all())
+        for tol in r.SWEEP + (r.REPORT_LIKE_TOL,):
+            self.assertEqual(r.counts_at(full, tol).tolist(), r.counts_at(thin, tol).tolist())
+            self.assertEqual(r.table_1_measures(full, tol), r.table_1_measures(thin, tol))
+            self.assertEqual(r.table_2_measures(full, tol), r.table_2_measures(thin, tol))
+        before, after = r.p2_measures(full), r.p2_measures(thin)
+        self.assertEqual(before["order"], after["order"])
+        self.assertEqual((before["steps"], before["kinks"], before["kinks_before_B"]),
+                         (after["steps"], after["kinks"], after["kinks_before_B"]))
+        self.assertEqual(before["B"]["lambda"], after["B"]["lambda"])
+        # A looser test never takes more iterations: the rescored columns are not shuffled.
+        counts = [r.counts_at(thin, t).tolist() for t in r.SWEEP]
+        for tight, loose in zip(counts, counts[1:]):
+            self.assertTrue(all(b <= a for a, b in zip(tight, loose)))

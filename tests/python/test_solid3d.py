@@ -71,6 +71,12 @@ class Rates(unittest.TestCase):
     def test_a_zero_error_has_no_rate(self):
         self.assertTrue(math.isnan(solid3d.observed_rates([4, 8], [0.1, 0.0])[1]))
 
+    def test_where_the_error_grows_is_read_from_the_errors(self):
+        # |e|: 0.1, 0.05, 0.06 (grows 16 -> 24), -0.02, 0.03 (grows 32 -> 40); signs aside.
+        n, e = [8, 16, 24, 32, 40], [0.1, -0.05, 0.06, -0.02, 0.03]
+        self.assertEqual(solid3d.error_growth(n, e), [(16, 24), (32, 40)])
+        self.assertEqual(solid3d.error_growth(n, [0.1, 0.05, -0.02, 0.01, 0.001]), [])
+
 
 def contactbench(*args):
     subprocess.run([BINARY, "run", "--formulation", "implicit-fb", *args], check=True,
@@ -117,6 +123,19 @@ class Section(unittest.TestCase):
         self.assertGreater(len(kinks), 0)
         self.assertIn("%d kinks located, %d verified" % (len(kinks), len(kinks)),
                       "\n".join(self.lines))
+
+    def test_thinned_records_give_the_same_section(self):
+        thinned = tempfile.mkdtemp(prefix="contactbench_solid3d_thin_")
+        self.addCleanup(shutil.rmtree, thinned)
+        shutil.copytree(os.path.join(self.tmp, "solid3d"), os.path.join(thinned, "solid3d"))
+        solid3d.thin_records(thinned)
+        n4 = os.path.join(thinned, "solid3d", "hertz", "n4")
+        self.assertEqual(sorted(os.listdir(n4)), sorted(solid3d.HERTZ_KEPT_FILES))
+        self.assertFalse(os.path.isdir(os.path.join(thinned, "solid3d", "plate-3d", "vtk")))
+        kept = pd.read_csv(os.path.join(n4, "solution.csv"))
+        contacts = pd.read_csv(os.path.join(n4, "contacts.csv"))
+        self.assertEqual(set(kept["node"]), set(contacts["node"]))
+        self.assertEqual(solid3d.section(thinned), self.lines)
 
     def test_no_records_no_section(self):
         empty = tempfile.mkdtemp(prefix="contactbench_solid3d_empty_")

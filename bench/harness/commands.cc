@@ -1,0 +1,512 @@
+#include "harness/commands.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <new>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "formulations/petsc/petsc.h"
+#include "formulations/petsc_dist/petsc_dist.h"
+#include "formulations/registry.h"
+#include "harness/cli.h"
+#include "harness/compare_table.h"
+#include "harness/interrupt.h"
+#include "harness/memory_budget.h"
+#include "harness/output_directory.h"
+#include "harness/process_agreement.h"
+#include "harness/records.h"
+#include "harness/run_inputs.h"
+#include "harness/snapshots.h"
+#include "harness/suggest.h"
+#include "io/problem_file.h"
+#include "path/near_start.h"
+#include "path/path.h"
+#include "path/replay.h"
+#include "problems/problem_path.h"
+
+namespace cb::harness {
+
+namespace {
+
+// The configuration of formulation `name`: the common settings plus its own --option values.
+FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
+  FormulationConfig config = a.config;
+  for (const auto& owner : {std::string(), name}) {
+    auto it = a.options.find(owner);
+    if (it != a.options.end()) config.options.insert(it->second.begin(), it->second.end());
+  }
+  if (!a.petsc_options.empty() && TakesPetscOptions(name)) {
+    config.options["petsc_options"] = a.petsc_options;
+  }
+  return config;
+}
+
+// The library's defaults for the problem (problem_path.h), changed by the options given.
+PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
+  PathOptions options = DefaultPathOptions(problem);
+  if (a.arc_length) options.arc_length = *a.arc_length;
+  if (a.steps) options.max_steps = *a.steps;
+  options.tolerance = a.tolerance;
+  options.start = a.start;
+  options.max_cutbacks = a.max_cutbacks;
+  options.locate_kinks = a.locate_kinks;
+  options.bifurcations = a.bifurcations;
+  options.controls.time_limit_s = a.time_limit;
+  options.controls.interrupted = [] { return InterruptRequested(); };
+  return options;
+}
+
+}  // namespace
+
+void PrepareOutput(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError("--out: cannot create the directory '" + dir + "': " + ec.message());
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw InputError("--out: '" + dir + "' exists and is not a directory");
+  }
+  const std::string probe = dir + "/.contactbench_write_test";
+  {
+    std::ofstream f(probe);
+    if (!f) throw InputError("--out: the directory '" + dir + "' is not writable");
+  }
+  std::filesystem::remove(probe, ec);
+}
+
+namespace {
+
+// The memory `model` needs by the model of memory_budget.h: each pair acts on at most two dofs
+// (a node against a half-space in the plane).
+MemoryEstimate EstimateOf(double dofs, double pairs) {
+  return {dofs, pairs, std::min(dofs, 2.0 * pairs)};
+}
+
+// The size of the block (P1) known before it is built: (n+1)^2 nodes of 2 dofs, and 2(n+1)
+// pairs on the wall and the floor (problems/block.cc). The other named problems are trusses
+// too small to matter before they are built.
+std::optional<MemoryEstimate> PredictedEstimate(const RunArguments& a) {
+  if (!a.problem_file.empty() || a.problem != "block") return std::nullopt;
+  const auto n = a.settings.find("n");
+  if (n == a.settings.end()) return std::nullopt;  // the default, 50, is small
+  double cells = 0.0;
+  try {
+    cells = std::stod(n->second);
+  } catch (const std::exception&) {
+    return std::nullopt;  // refused by the problem's own check, with its message
+  }
+  if (!(cells >= 0.0 && cells <= 1e6)) return std::nullopt;
+  return EstimateOf(2.0 * (cells + 1.0) * (cells + 1.0), 2.0 * (cells + 1.0));
+}
+
+// The parameters --set may change: a named problem's declared ones, a problem file's as
+// loading it without settings gives them. Empty when there is no such problem.
+std::vector<std::string> SettableParameters(const RunArguments& a) {
+  std::vector<std::string> names;
+  try {
+    Parameters declared;
+    if (!a.problem_file.empty()) {
+      declared = io::LoadProblemFile(a.problem_file).parameters;
+    } else {
+      for (const auto& info : ProblemRegistry()) {
+        if (info.name == a.problem) declared = info.defaults();
+      }
+    }
+    for (const auto& entry : declared.entries()) names.push_back(entry.name);
+  } catch (const std::exception&) {
+    names.clear();  // the file itself is refused: the refusal was not about a setting
+  }
+  return names;
+}
+
+// "; did you mean 'X'?" for the first --set key the problem does not declare, or "". Asked
+// only after the problem was refused.
+std::string SettingSuggestion(const RunArguments& a) {
+  const std::vector<std::string> known = SettableParameters(a);
+  if (known.empty()) return "";
+  for (const auto& setting : a.settings) {
+    if (std::find(known.begin(), known.end(), setting.first) == known.end()) {
+      return DidYouMean(setting.first, known);
+    }
+  }
+  return "";
+}
+
+// A formulation's refusal of its settings, with the closest known key for an unknown one.
+[[noreturn]] void RefuseFormulationSettings(const std::invalid_argument& e) {
+  const auto* unknown = dynamic_cast<const UnknownOptionError*>(&e);
+  throw UsageError(e.what() + (unknown ? DidYouMean(unknown->key(), unknown->known()) : ""));
+}
+
+}  // namespace
+
+Problem LoadProblem(const RunArguments& a) {
+  const std::string what =
+      a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
+  if (const auto predicted = PredictedEstimate(a)) CheckMemory(*predicted, what, a.allow_memory);
+  const Activity building("building the problem");
+  Problem problem;
+  try {
+    problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
+                                      : MakeProblem(a.problem, a.settings);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what() + SettingSuggestion(a));
+  }
+  CheckMemory(EstimateOf(problem.model->num_dofs(), problem.model->num_pairs()), what,
+              a.allow_memory);
+  return problem;
+}
+
+namespace {
+
+// What run.json records of the arguments, before anything runs.
+void DescribeArguments(const RunArguments& a, const Problem& problem, RunJson* record) {
+  record->problem = problem.name;
+  record->problem_source =
+      a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
+  record->problem_notes = problem.notes;
+  record->settings = a.settings;
+  record->tolerance = a.tolerance;
+  record->time_limit_s = a.time_limit;
+}
+
+// Runs `body` in the output directory of --out, prepared, locked against a second run and
+// claimed (an earlier run's records refused, or removed with --overwrite), and ends with
+// run.json whatever ends the command: a status, a failure or a failed write (rethrown for the
+// message). `body` returns the exit status and sets the reason.
+int InOutputDirectory(const RunArguments& a, RunJson* record,
+                      const std::function<int(const RecordTarget&, std::string* reason)>& body) {
+  PrepareOutput(a.out);
+  const OutputLock lock(a.out);
+  ClaimOutput(a.out, a.overwrite);
+  std::string reason;
+  int status = kExitFailure;
+  try {
+    if (!a.problem_file.empty()) record->inputs = CopyProblemInputs(a.problem_file, a.out);
+    status = body(RecordTarget(a.out), &reason);
+  } catch (const UsageError& e) {
+    WriteRunJson(a.out, *record, kExitBadArguments, e.what());
+    throw;
+  } catch (const Interrupted& e) {
+    WriteRunJson(a.out, *record, kExitInterrupted, e.what());
+    throw;
+  } catch (const std::bad_alloc&) {
+    WriteRunJson(a.out, *record, kExitFailure,
+                 std::string("out of memory while ") + Activity::Current());
+    throw;
+  } catch (const std::exception& e) {
+    WriteRunJson(a.out, *record, kExitFailure, e.what());
+    throw;
+  }
+  WriteRunJson(a.out, *record, status, reason);
+  return status;
+}
+
+// Runs `body` with the records in `memory` (no output directory), run.json's text among them.
+int InMemory(const RunArguments& a, RunJson* record, RecordTexts* memory,
+             const std::function<int(const RecordTarget&, std::string* reason)>& body) {
+  if (!a.out.empty()) throw std::logic_error("records in memory and in --out both");
+  if (a.save_every > 0) throw UsageError("--save-every: the saved states need an output directory");
+  if (DistributedSize() > 1)
+    throw UsageError("records in memory: not in a run of several processes");
+  memory->clear();
+  std::string reason;
+  const int status = body(RecordTarget(memory), &reason);
+  (*memory)["run.json"] = RunJsonText(*record, status, reason);
+  return status;
+}
+
+// Where the records go: the claimed output directory, else `memory`.
+int WithRecords(const RunArguments& a, RunJson* record, RecordTexts* memory,
+                const std::function<int(const RecordTarget&, std::string* reason)>& body) {
+  return memory != nullptr ? InMemory(a, record, memory, body) : InOutputDirectory(a, record, body);
+}
+
+// Where the records went, for the messages.
+std::string Destination(const RecordTarget& target) {
+  return target.memory != nullptr ? "memory" : target.directory;
+}
+
+// What the summary line of a run counts: for a fixed-load solve (P1, an LCP) the iterations and
+// the time it took, for a path its steps and what was found along it.
+std::string SummaryCounts(const Problem& problem, const PathSummary& summary,
+                          const RunRecorder& recorder) {
+  char text[256];
+  if (problem.loading == LoadingKind::kFixedLoad) {
+    int iterations = 0;
+    for (int n : recorder.iterations()) iterations += n;
+    double time_s = 0.0;
+    for (double t : recorder.solve_times_s()) time_s += t;
+    std::snprintf(text, sizeof text, "%d iterations, %.3g s", iterations, time_s);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "%d accepted steps, %d attempts, %d kinks, %d limit points, "
+                  "%d bifurcation points, %d branch switches",
+                  summary.accepted_steps, summary.attempts, summary.kinks, summary.limit_points,
+                  summary.bifurcations, summary.branch_switches);
+  }
+  return text;
+}
+
+// The run itself, its records in `target` (a claimed output directory or memory).
+int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
+             const PathOptions& options, const RecordTarget& target, OutputReadyWord* ready,
+             RunJson* record, std::string* reason) {
+  // --start near: the reference formulation's solution, perturbed (near_start.h).
+  std::optional<State> near;
+  if (a.start_near) {
+    auto reference = MakeFormulation("implicit-fb", FormulationConfig());
+    const Activity solving("solving --start near's reference problem");
+    std::string why;
+    near.emplace();
+    if (!NearSolutionStart(*problem.model, problem.scales, ZeroState(*problem.model), problem.load,
+                           *reference, options, a.near_offset, &*near, &why)) {
+      const bool interrupted = InterruptRequested();
+      *reason = interrupted ? "interrupted during --start near's reference solve (" + why + ")"
+                            : "--start near: the reference solve failed (" + why + ")";
+      std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
+      return interrupted ? kExitInterrupted : kExitFailure;
+    }
+  }
+  RecordFiles files(target);
+  RunRecorder recorder(&files, problem,
+                       {problem.name, formulation.name(), formulation.solver(),
+                        formulation.settings(), a.start_near ? "near" : ToString(a.start), "run"},
+                       problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
+  WriteParameters(target, problem);
+  // The saved states are files (VTK among them): only in an output directory.
+  std::optional<SnapshotWriter> snapshots;
+  if (target.memory == nullptr) snapshots.emplace(a.out, problem, a.save_every);
+  ready->Ready(a.out + "/vtk");  // the other processes of a distributed run may write there now
+  std::vector<PathObserver*> watching{&recorder};
+  if (snapshots) watching.push_back(&*snapshots);
+  ObserverTee observers(watching);
+  const PathSummary summary = [&] {
+    const Activity solving("solving");
+    return TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
+  }();
+  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
+  {
+    const Activity writing("writing the final state");
+    // The snapshot first: in a distributed run the last step all processes take together.
+    if (snapshots) snapshots->Save(summary.final_state, summary.accepted_steps, "final");
+    WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
+  }
+  record->runs = 1;
+  record->attempts = summary.attempts;
+  record->accepted_steps = summary.accepted_steps;
+  record->kinks = summary.kinks;
+  *reason = summary.message;
+  recorder.EndProgress();
+  std::fprintf(stderr, "%s %s: %s (%s) -> %s\n", problem.name.c_str(), formulation.name().c_str(),
+               summary.message.c_str(), SummaryCounts(problem, summary, recorder).c_str(),
+               Destination(target).c_str());
+  if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
+  if (summary.status != Status::kConverged) return kExitFailure;
+  return kExitOk;
+}
+
+// A distributed run's processes other than 0 (petsc_dist.h): the same path, every decision
+// taken on values all processes share, and only their pieces of the saved states written, in
+// the directory process 0 has made ready (a failure there ends them quietly: process 0 says why).
+int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
+              const PathOptions& options) {
+  if (!AwaitOutputReady(a.out + "/vtk")) return kExitFailure;
+  SnapshotWriter pieces(a.out, problem, a.save_every);
+  const PathSummary summary = TraceProblem(problem, formulation, options, &pieces);
+  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();  // as process 0 does
+  pieces.Save(summary.final_state, summary.accepted_steps, "final");
+  if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
+  return summary.status == Status::kConverged ? kExitOk : kExitFailure;
+}
+
+// The formulation of `run`, made with its settings (refused as bad arguments).
+std::unique_ptr<Formulation> MakeRunFormulation(const RunArguments& a) {
+  if (!a.petsc_options.empty() && !TakesPetscOptions(a.formulation)) {
+    throw UsageError("--petsc-options: " + a.formulation + " is not a PETSc formulation");
+  }
+  try {
+    return MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
+  } catch (const std::invalid_argument& e) {
+    RefuseFormulationSettings(e);
+  }
+}
+
+}  // namespace
+
+bool AcceptsProblem(const RunArguments& a, std::string* reason) {
+  const Problem problem = LoadProblem(a);
+  return MakeRunFormulation(a)->Accepts(FirstStep(problem, MakePathOptions(a, problem)), reason);
+}
+
+int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
+  Problem problem = LoadProblem(a);
+  std::unique_ptr<Formulation> formulation = MakeRunFormulation(a);
+  const PathOptions options = MakePathOptions(a, problem);
+  std::string refusal;
+  if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
+    throw InputError(refusal + " (problem '" + problem.name + "')");
+  }
+  if (a.start_near && problem.loading != LoadingKind::kFixedLoad) {
+    throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
+                     "' is traced by arc length");
+  }
+  if (a.start_near && DistributedSize() > 1) {
+    throw UsageError("--start near: not in a run of several processes");
+  }
+  if (DistributedRank() != 0) return FollowRun(a, problem, *formulation, options);
+  OutputReadyWord ready;  // to the other processes, even when this one fails before
+  DescribeArguments(a, problem, record);
+  record->formulations = {formulation->name()};
+  record->starts = {a.start_near ? "near" : ToString(a.start)};
+  return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
+    return TraceRun(a, problem, *formulation, options, target, &ready, record, reason);
+  });
+}
+
+namespace {
+
+// The comparison itself, its records in `target` (a claimed output directory or memory).
+// Says on standard error that some solves of a run gave another answer when repeated: their
+// times are not those of one solve (the first answer is still the one judged and recorded).
+void WarnOfDisagreements(const RunLabel& label, const RunRecorder& recorder) {
+  if (recorder.repeat_disagreements() == 0) return;
+  std::fprintf(stderr,
+               "warning: %s %s: %d solves gave another answer when repeated (first: %s); the "
+               "first answer is judged, repeats_agree = false in steps.csv\n",
+               label.formulation.c_str(), label.start.c_str(), recorder.repeat_disagreements(),
+               recorder.first_disagreement().c_str());
+}
+
+int CompareRuns(const RunArguments& a, const Problem& problem,
+                const std::vector<std::unique_ptr<Formulation>>& formulations,
+                Formulation* reference, const RecordTarget& target, RunJson* record,
+                std::string* reason) {
+  PathOptions options = MakePathOptions(a, problem);
+  const StepProblem first = FirstStep(problem, options);
+  const int total = problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps;
+  RecordFiles files(target);
+  RecordWriter<RunOutcomeRow> runs(target, RunsSchema());
+  const Activity comparing("comparing the formulations");
+
+  // The reference path: the work every formulation is given in replay mode (warm start,
+  // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
+  PathRecorder path;
+  if (a.mode == "replay") {
+    options.start = StartKind::kWarm;
+    RunRecorder kinks_only(&files, problem,
+                           {problem.name, "reference:" + reference->name(), reference->solver(),
+                            reference->settings(), "warm", "reference"},
+                           total);
+    struct KinkTee final : PathObserver {
+      PathRecorder* path;
+      RunRecorder* kinks;
+      void OnAttempt(const StepAttempt& at) override { path->OnAttempt(at); }
+      void OnKink(const KinkRecord& k) override {
+        path->OnKink(k);
+        kinks->OnKink(k);
+      }
+    } tee;
+    tee.path = &path;
+    tee.kinks = &kinks_only;
+    const PathSummary s = TraceProblem(problem, *reference, options, &tee);
+    std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
+    if (path.steps.empty()) {
+      *reason = "the reference path has no verified step to replay (" + s.message + ")";
+      std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
+      return kExitFailure;
+    }
+  }
+
+  std::vector<CompareTableRow> table;
+  for (const auto& formulation : formulations) {
+    for (StartKind start : a.starts) {
+      const RunLabel label{problem.name,          formulation->name(),
+                           formulation->solver(), formulation->settings(),
+                           ToString(start),       a.mode};
+      std::string why;
+      if (!formulation->Accepts(first, &why)) {
+        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
+        runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
+        table.push_back({formulation->name(), ToString(start), "skipped", {}, {}});
+        continue;
+      }
+      RunRecorder recorder(&files, problem, label,
+                           a.mode == "replay" ? static_cast<int>(path.steps.size()) : total);
+      PathOptions run_options = options;
+      run_options.start = start;
+      run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
+      run_options.solve_repeats = a.repeat;
+      const PathSummary s =
+          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
+                                          path, *formulation, run_options, &recorder)
+                             : TraceProblem(problem, *formulation, run_options, &recorder);
+      recorder.EndProgress();
+      runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
+                  a.time_limit, a.tolerance});
+      table.push_back(
+          {formulation->name(), ToString(start),
+           std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
+           recorder.iterations(), recorder.solve_times_s()});
+      WarnOfDisagreements(label, recorder);
+      ++record->runs;
+      record->repeat_disagreements += recorder.repeat_disagreements();
+      record->attempts += recorder.attempts();
+      record->accepted_steps += recorder.accepted();
+      if (s.status == Status::kStoppedByCaller) {
+        *reason = formulation->name() + ": " + s.message;
+        return kExitInterrupted;
+      }
+    }
+  }
+  *reason = "every formulation was run (runs.csv holds each one's outcome)";
+  if (record->repeat_disagreements > 0) {
+    *reason += "; " + std::to_string(record->repeat_disagreements) +
+               " solves' repetitions disagreed with their first answer (repeats_agree in "
+               "steps.csv)";
+  }
+  std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(table).c_str(),
+               Destination(target).c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+int CompareCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
+  Problem problem = LoadProblem(a);
+  std::vector<std::unique_ptr<Formulation>> formulations;
+  std::unique_ptr<Formulation> reference;
+  try {
+    for (const auto& name : a.formulations) {
+      formulations.push_back(MakeFormulation(name, ConfigFor(a, name)));
+    }
+    reference = MakeFormulation(a.reference, ConfigFor(a, a.reference));
+  } catch (const std::invalid_argument& e) {
+    RefuseFormulationSettings(e);
+  }
+  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
+  // The reference traces the path every formulation replays: one that cannot take the
+  // problem's steps is a bad argument, refused before any work.
+  std::string refusal;
+  if (a.mode == "replay" &&
+      !reference->Accepts(FirstStep(problem, MakePathOptions(a, problem)), &refusal)) {
+    throw UsageError("--reference " + reference->name() + ": " + refusal + " (problem '" +
+                     problem.name + "')");
+  }
+  DescribeArguments(a, problem, record);
+  for (const auto& f : formulations) record->formulations.push_back(f->name());
+  for (StartKind start : a.starts) record->starts.push_back(ToString(start));
+  record->mode = a.mode;
+  record->repeat = a.repeat;
+  if (a.mode == "replay") record->reference = reference->name();
+  return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
+    return CompareRuns(a, problem, formulations, reference.get(), target, record, reason);
+  });
+}
+
+}  // namespace cb::harness
