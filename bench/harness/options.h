@@ -63,7 +63,7 @@ struct RunArguments {
   std::string out;
   std::string export_format = "json";  // export: json or fclib
   bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
-  bool force = false;  // rerun: run even when the build, a library or an input differs
+  bool force = false;         // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
