@@ -6,10 +6,13 @@
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "core/blas_info.h"
 #include "formulations/registry.h"
@@ -17,6 +20,19 @@
 #include "verdict/verdict.h"
 
 namespace cb::bench {
+
+// Registers a benchmark whose repetitions (--benchmark_repetitions, scripts/run_bench.sh) are
+// reported with their range: Google Benchmark's aggregates are mean, median, stddev and cv;
+// min and max are added, so that the records keep the median with its spread.
+template <typename... Arguments>
+benchmark::internal::Benchmark* RegisterWithRange(Arguments&&... arguments) {
+  return benchmark::RegisterBenchmark(std::forward<Arguments>(arguments)...)
+      ->ComputeStatistics(
+          "min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); })
+      ->ComputeStatistics("max", [](const std::vector<double>& v) {
+        return *std::max_element(v.begin(), v.end());
+      });
+}
 
 // The CPU model from /proc/cpuinfo: Google Benchmark's own context has the number of CPUs and
 // their clock, not the model, which the comparison report states.

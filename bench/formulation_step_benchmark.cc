@@ -239,8 +239,8 @@ int main(int argc, char** argv) {
         for (const auto& [label, k] : steps) {
           const std::string name = "FormulationStep/" + problem + "/" + info.name + "/" +
                                    ToString(start) + "/" + label + "/step:" + std::to_string(k);
-          auto* b = benchmark::RegisterBenchmark(name.c_str(), StepBenchmark, ref.get(), info.name,
-                                                 start, k);
+          auto* b =
+              bench::RegisterWithRange(name.c_str(), StepBenchmark, ref.get(), info.name, start, k);
           b->UseManualTime()->Unit(benchmark::kMicrosecond);
           // Time budget: dense SLSQP takes seconds per P3 step, so one solve per repetition is
           // the measurement.

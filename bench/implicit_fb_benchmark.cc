@@ -322,23 +322,23 @@ void RegisterAll() {
   // The default first, then the full-system LU for comparison (n = 400 only with the default:
   // KLU needs minutes there).
   for (const std::string solver : {"cholmod", "klu"}) {
-    auto* b = benchmark::RegisterBenchmark(("BM_BlockColdSolve/" + solver).c_str(), BlockColdSolve,
-                                           solver);
+    auto* b =
+        bench::RegisterWithRange(("BM_BlockColdSolve/" + solver).c_str(), BlockColdSolve, solver);
     for (int n : {25, 50, 100, 200}) b->Arg(n);
     if (solver == "cholmod") b->Arg(400);
     b->Unit(benchmark::kMillisecond);
   }
   for (const std::string solver : {"cholmod", "klu"}) {
-    benchmark::RegisterBenchmark(("BM_ArchCurvedWarmStep/" + solver).c_str(), ArchCurvedWarmStep,
-                                 solver)
+    bench::RegisterWithRange(("BM_ArchCurvedWarmStep/" + solver).c_str(), ArchCurvedWarmStep,
+                             solver)
         ->Arg(100)
         ->Arg(1000)
         ->Unit(benchmark::kMicrosecond);
   }
   for (const std::string solver : {"cholmod", "klu"}) {
     for (const std::string problem : {"arch-curved", "arch-flat"}) {
-      benchmark::RegisterBenchmark(("BM_ArchPath/" + problem + "/" + solver).c_str(), ArchPath,
-                                   problem, solver)
+      bench::RegisterWithRange(("BM_ArchPath/" + problem + "/" + solver).c_str(), ArchPath, problem,
+                               solver)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(3);
     }
@@ -346,13 +346,12 @@ void RegisterAll() {
   for (const std::string solver : {"cholmod", "klu"}) {
     // n = 200 with klu would repeat 15 LU factorisations of 2 s each: the LU comparator is
     // measured by the cholmod case anyway.
-    auto* block =
-        benchmark::RegisterBenchmark(("BM_IterationOverFactorizationBlock/" + solver).c_str(),
-                                     IterationOverFactorizationBlock, solver);
+    auto* block = bench::RegisterWithRange(("BM_IterationOverFactorizationBlock/" + solver).c_str(),
+                                           IterationOverFactorizationBlock, solver);
     block->Arg(50)->Unit(benchmark::kMillisecond);
     if (solver == "cholmod") block->Arg(200);
-    benchmark::RegisterBenchmark(("BM_IterationOverFactorizationArchCurved/" + solver).c_str(),
-                                 IterationOverFactorizationArchCurved, solver)
+    bench::RegisterWithRange(("BM_IterationOverFactorizationArchCurved/" + solver).c_str(),
+                             IterationOverFactorizationArchCurved, solver)
         ->Arg(100)
         ->Arg(1000)
         ->Unit(benchmark::kMicrosecond);

@@ -271,8 +271,8 @@ int main(int argc, char** argv) {
   for (const auto& info : FormulationRegistry()) {
     if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {25, 50, 100, 200, 400}) {
-      auto* b = benchmark::RegisterBenchmark(("BlockColdSolve/" + info.name).c_str(), ColdSolve,
-                                             std::string("block"), info.name);
+      auto* b = bench::RegisterWithRange(("BlockColdSolve/" + info.name).c_str(), ColdSolve,
+                                         std::string("block"), info.name);
       b->ArgName("n")->Arg(n)->UseManualTime()->Unit(benchmark::kMillisecond);
       // A solve of seconds is measured once, whatever --benchmark_repetitions says: its noise
       // is far below the growth being measured, and repeating n = 400 would cost minutes. So
@@ -285,8 +285,8 @@ int main(int argc, char** argv) {
   for (const auto& info : FormulationRegistry()) {
     if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {16, 24, 40}) {
-      auto* b = benchmark::RegisterBenchmark(("HertzColdSolve/" + info.name).c_str(), ColdSolve,
-                                             std::string("hertz-3d"), info.name);
+      auto* b = bench::RegisterWithRange(("HertzColdSolve/" + info.name).c_str(), ColdSolve,
+                                         std::string("hertz-3d"), info.name);
       b->ArgName("n")->Arg(n)->UseManualTime()->Unit(benchmark::kMillisecond);
       b->Iterations(1)->Repetitions(1);  // solves of seconds, measured once (as P1's large ones)
     }

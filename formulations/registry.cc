@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "core/library_versions.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/ipopt/ipopt.h"
 #include "formulations/nlopt/nlopt.h"
@@ -54,6 +55,15 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        DistAvailable(), MakeDistPetscSsls},
   };
   return registry;
+}
+
+std::vector<LinkedLibrary> LinkedLibraries() {
+  // One line per library.
+  return {
+      {"eigen", EigenVersion()}, {"suitesparse", SuiteSparseVersion()},  {"ipopt", IpoptVersion()},
+      {"nlopt", NloptVersion()}, {"siconos-numerics", SiconosVersion()}, {"petsc", PetscVersion()},
+      {"mpi", MpiVersion()},
+  };
 }
 
 std::vector<std::string> FormulationNames() {

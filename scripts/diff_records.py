@@ -65,13 +65,27 @@ def diff_csv(old, new, label, out):
                     return
 
 
-# run.json's fields that differ between two runs of the same records: the build, the BLAS it
-# ran on, the command line (it names the output directory), when it started and how long it took.
-RUN_JSON_UNCOMPARED = {"version", "commit", "blas", "command_line", "started_at", "wall_time_s"}
+# run.json's fields that differ between two runs of the same records: the build and the
+# libraries, the BLAS and the machine it ran on and the machine's load, the command line (it
+# names the output directory), what it reran, when it started and how long it took.
+RUN_JSON_UNCOMPARED = {"version", "commit", "build", "libraries", "blas", "machine",
+                       "load_average", "command_line", "rerun_of", "started_at", "wall_time_s"}
+
+
+def without_paths(run):
+    """run.json with the paths its inputs were read from left out: a rerun reads the copies
+    (the copies' names and SHA-256 are still compared, and a named problem's name)."""
+    for item in run.get("inputs", []):
+        item.pop("source", None)
+    source = run.get("problem_source", "")
+    if source.startswith("--problem-file "):
+        run["problem_source"] = "--problem-file"
+    return run
 
 
 def diff_run_json(old, new, label, out):
-    a, b = json.loads(old.read_text()), json.loads(new.read_text())
+    a = without_paths(json.loads(old.read_text()))
+    b = without_paths(json.loads(new.read_text()))
     for key in sorted((set(a) | set(b)) - RUN_JSON_UNCOMPARED):
         if a.get(key) != b.get(key):
             out.append(f"{label}: {key}: {a.get(key)!r} -> {b.get(key)!r}")

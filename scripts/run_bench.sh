@@ -8,8 +8,11 @@
 #   formulation_step_benchmark   one replayed P2 / P3 step per formulation x start x step
 #   scaling_benchmark            P1 cold solve, n = 25 ... 400, every fixed-load formulation
 #
-# Repetitions: 3 (aggregates only: mean, median, stddev, cv), except where a benchmark fixes
-# its own (solves of seconds are measured once; see each binary's header comment).
+# Repetitions: 3 (aggregates only: mean, median, stddev, cv, and the min and max every binary
+# adds, so each time is a median with its range), except where a benchmark fixes its own
+# (solves of seconds are measured once, one sample with no range; see each binary's header
+# comment). The JSON's context holds the load average at the start (Google Benchmark's
+# load_avg); this script adds load_avg_end, read when the binary has finished.
 # Run time on the 2-core machine of results/README.md, measured on the quiet machine: 16 minutes
 # (implicit_fb_benchmark 469 s, formulation_step_benchmark 255 s, scaling_benchmark 228 s).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
@@ -43,6 +46,20 @@ for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark
     rc=$?
   fi
   ((rc == 0)) || { echo "   ($binary failed)" >&2; status=1; }
+  if [[ -s "$out/$binary.json" ]]; then
+    python3 - "$out/$binary.json" <<'PY' || status=1
+import json
+import os
+import sys
+path = sys.argv[1]
+with open(path) as f:
+    report = json.load(f)
+report["context"]["load_avg_end"] = list(os.getloadavg())
+with open(path + ".tmp", "w") as f:
+    json.dump(report, f, indent=2)
+os.replace(path + ".tmp", path)
+PY
+  fi
   echo "   $((SECONDS - start)) s" >&2
 done
 exit $status

@@ -29,6 +29,9 @@
 #                            formulations of the full paths. Records go to
 #                            RESULTS_DIR/robustness/<problem>/theta-<theta>/.
 #
+# Timings (docs/comparison.md "Timing protocol"): block's single solve is repeated BLOCK_REPEAT
+# times (default 5; compare --repeat) and recorded as the median with its min and max; a path's
+# thousands of steps are timed once each (their spread is the spread over the steps).
 # Every solve has a time limit of TIME_LIMIT seconds (default 5, as the main job's comparison);
 # runs.csv records it (column time_limit_s), and the report charges failures at it.
 # Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
@@ -41,6 +44,7 @@
 # arch-curved-prefix 818 s (~550 s nlopt-mpcc, ~250 s nlopt-merit), block 6 s.
 # Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
+# BLOCK_REPEAT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),
 # ROBUST_ARC_CURVED (50), ROBUST_PROBLEMS (arch-flat arch-curved), SKIP_SETUP=1 to use an existing build without running setup.sh.
 set -uo pipefail
@@ -51,6 +55,7 @@ robust_out="${RESULTS_DIR:-$here/results}/robustness"
 read -r -a robust_thetas <<< "${ROBUST_THETAS:-0.1 0.2 0.5 1.0}"
 declare -A robust_arc=([arch-flat]="${ROBUST_ARC_FLAT:-100}" [arch-curved]="${ROBUST_ARC_CURVED:-50}")
 time_limit="${TIME_LIMIT:-5}"
+block_repeat="${BLOCK_REPEAT:-5}"
 prefix_steps="${PREFIX_STEPS:-50}"
 # FULL_STEPS: a documented prefix of the full paths instead (empty: each problem's own steps).
 full_steps=(); [[ -n "${FULL_STEPS:-}" ]] && full_steps=(--steps "$FULL_STEPS")
@@ -90,7 +95,8 @@ for set in "${sets[@]}"; do
       compare "$out/$set" --problem "${set%-prefix}" --formulations "$all" --starts warm,cold \
           --steps "$prefix_steps" ;;
     block)
-      compare "$out/block" --problem block --formulations "$all" --starts cold ;;
+      compare "$out/block" --problem block --formulations "$all" --starts cold \
+          --repeat "$block_repeat" ;;
     robustness)
       for problem in ${ROBUST_PROBLEMS:-arch-flat arch-curved}; do
         for theta in "${robust_thetas[@]}"; do

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/median.h"
 #include "harness/compare_table.h"
 #include "harness/suggest.h"
 #include "source_tree.h"
@@ -184,7 +185,7 @@ TEST(CliMessagesTest, PlotRunsThePlotScriptOnARunsDirectory) {
 }
 
 TEST(CompareTableTest, MediansOfOddAndEvenCounts) {
-  using cb::harness::Median;
+  using cb::Median;
   EXPECT_EQ(Median({3.0, 1.0, 2.0}), 2.0);
   EXPECT_EQ(Median({4.0, 1.0, 3.0, 2.0}), 2.5);
   EXPECT_TRUE(std::isnan(Median({})));

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "harness/options.h"
+#include "record_table.h"
 #include "source_tree.h"
 
 namespace {
@@ -53,12 +54,7 @@ std::filesystem::path TempDir(const std::string& name) {
   return dir;
 }
 
-std::vector<std::string> Lines(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
+using ::cb::testing_support::Lines;
 
 TEST(CliTest, ListNamesProblemsFormulationsAndSolvers) {
   const Outcome o = RunCli("list");
@@ -243,26 +239,7 @@ TEST(CliTest, OutOfRangeAndRepeatedOptionsAreRefused) {
 
 const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";
 
-// Rows of a CSV file as column -> value maps.
-std::vector<std::map<std::string, std::string>> Table(const std::filesystem::path& file) {
-  const auto lines = Lines(file);
-  std::vector<std::map<std::string, std::string>> rows;
-  if (lines.empty()) return rows;
-  auto split = [](const std::string& line) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
-    return fields;
-  };
-  const auto header = split(lines[0]);
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    const auto fields = split(lines[i]);
-    std::map<std::string, std::string> row;
-    for (std::size_t k = 0; k < header.size() && k < fields.size(); ++k) row[header[k]] = fields[k];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using ::cb::testing_support::Table;
 
 double Number(const std::map<std::string, std::string>& row, const std::string& column) {
   auto it = row.find(column);

@@ -19,6 +19,7 @@
 #include "harness/options.h"
 #include "harness/plot_command.h"
 #include "harness/records_doc.h"
+#include "harness/rerun.h"
 #include "harness/run_json.h"
 #include "harness/suggest.h"
 #include "io/fclib_file.h"
@@ -96,6 +97,31 @@ int Schema() {
   return kExitOk;
 }
 
+int Execute(Command command, const RunArguments& a, RunJson* record);
+
+// `contactbench rerun DIR --out NEW`: the recorded command again (rerun.h), refused when it
+// would not be the same run unless --force.
+int Rerun(const RunArguments& a) {
+  const RerunPlan plan = PlanRerun(a.operand, a.out, a.overwrite);
+  if (!plan.differences.empty()) {
+    const std::string listed = "\n  " + Join(plan.differences, "\n  ");
+    if (!a.force) {
+      throw InputError("rerun: refused, '" + a.operand + "' was made otherwise:" + listed +
+                       "\n(--force reruns it anyway)");
+    }
+    std::fprintf(stderr, "rerun: --force: rerunning although%s\n", listed.c_str());
+  }
+  const CommandInfo* command = FindCommand(plan.command);
+  const RunArguments arguments = ParseArguments(command->command, plan.arguments);
+  RunJson record;
+  record.command_line = {RunningBinary(), plan.command};
+  record.command_line.insert(record.command_line.end(), plan.arguments.begin(),
+                             plan.arguments.end());
+  record.command = plan.command;
+  record.rerun_of = a.operand;
+  return Execute(command->command, arguments, &record);
+}
+
 int Execute(Command command, const RunArguments& a, RunJson* record) {
   switch (command) {
     case kList:
@@ -110,6 +136,8 @@ int Execute(Command command, const RunArguments& a, RunJson* record) {
       return Schema();
     case kPlot:
       return RunPlotScript(a);
+    case kRerun:
+      return Rerun(a);
   }
   return kExitBadArguments;
 }

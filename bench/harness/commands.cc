@@ -21,6 +21,7 @@
 #include "harness/output_directory.h"
 #include "harness/process_agreement.h"
 #include "harness/records.h"
+#include "harness/run_inputs.h"
 #include "harness/snapshots.h"
 #include "harness/suggest.h"
 #include "io/problem_file.h"
@@ -186,6 +187,7 @@ int InOutputDirectory(const RunArguments& a, RunJson* record,
   std::string reason;
   int status = kExitFailure;
   try {
+    if (!a.problem_file.empty()) record->inputs = CopyProblemInputs(a.problem_file, a.out);
     status = body(RecordTarget(a.out), &reason);
   } catch (const UsageError& e) {
     WriteRunJson(a.out, *record, kExitBadArguments, e.what());
@@ -370,6 +372,17 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
 namespace {
 
 // The comparison itself, its records in `target` (a claimed output directory or memory).
+// Says on standard error that some solves of a run gave another answer when repeated: their
+// times are not those of one solve (the first answer is still the one judged and recorded).
+void WarnOfDisagreements(const RunLabel& label, const RunRecorder& recorder) {
+  if (recorder.repeat_disagreements() == 0) return;
+  std::fprintf(stderr,
+               "warning: %s %s: %d solves gave another answer when repeated (first: %s); the "
+               "first answer is judged, repeats_agree = false in steps.csv\n",
+               label.formulation.c_str(), label.start.c_str(), recorder.repeat_disagreements(),
+               recorder.first_disagreement().c_str());
+}
+
 int CompareRuns(const RunArguments& a, const Problem& problem,
                 const std::vector<std::unique_ptr<Formulation>>& formulations,
                 Formulation* reference, const RecordTarget& target, RunJson* record,
@@ -428,6 +441,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       PathOptions run_options = options;
       run_options.start = start;
       run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
+      run_options.solve_repeats = a.repeat;
       const PathSummary s =
           a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
                                           path, *formulation, run_options, &recorder)
@@ -439,7 +453,9 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
           {formulation->name(), ToString(start),
            std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
            recorder.iterations(), recorder.solve_times_s()});
+      WarnOfDisagreements(label, recorder);
       ++record->runs;
+      record->repeat_disagreements += recorder.repeat_disagreements();
       record->attempts += recorder.attempts();
       record->accepted_steps += recorder.accepted();
       if (s.status == Status::kStoppedByCaller) {
@@ -449,6 +465,11 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
     }
   }
   *reason = "every formulation was run (runs.csv holds each one's outcome)";
+  if (record->repeat_disagreements > 0) {
+    *reason += "; " + std::to_string(record->repeat_disagreements) +
+               " solves' repetitions disagreed with their first answer (repeats_agree in "
+               "steps.csv)";
+  }
   std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(table).c_str(),
                Destination(target).c_str());
   return kExitOk;
@@ -481,6 +502,7 @@ int CompareCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) 
   for (const auto& f : formulations) record->formulations.push_back(f->name());
   for (StartKind start : a.starts) record->starts.push_back(ToString(start));
   record->mode = a.mode;
+  record->repeat = a.repeat;
   if (a.mode == "replay") record->reference = reference->name();
   return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
     return CompareRuns(a, problem, formulations, reference.get(), target, record, reason);

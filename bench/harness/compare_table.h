@@ -16,9 +16,6 @@ struct CompareTableRow {
   std::vector<double> solve_times;  // per solve, seconds
 };
 
-// The median of `values` (the mean of the two middle ones for an even count); nan when empty.
-double Median(std::vector<double> values);
-
 // The table as aligned plain text, a header line first.
 std::string CompareTable(const std::vector<CompareTableRow>& rows);
 

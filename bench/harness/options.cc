@@ -180,7 +180,7 @@ std::vector<std::string> BifurcationModes() { return {"off", "detect", "switch"}
 
 // --- the table -------------------------------------------------------------------------------
 
-constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema | kPlot;
+constexpr unsigned kAll = kList | kRun | kCompare | kExport | kSchema | kPlot | kRerun;
 constexpr unsigned kProblemCommands = kRun | kCompare | kExport;
 constexpr unsigned kPathCommands = kRun | kCompare;
 
@@ -203,10 +203,14 @@ std::vector<Option> MakeOptions() {
          a->formulations = NonEmptyList(o, v);
          for (const auto& f : a->formulations) Choice(o, f);
        }},
-      {"--out", "DIR", kPathCommands, Need::kRequired, false,
+      {"--out", "DIR", kPathCommands | kRerun, Need::kRequired, false,
        "the directory of the records (created if missing; docs/records.md)", nullptr,
        [](O, S v, A* a) { a->out = v; }},
-      {"--overwrite", "", kPathCommands, Need::kOptional, false,
+      {"--force", "", kRerun, Need::kOptional, false,
+       "rerun even when the binary, a library, the BLAS, the process count or a copied input "
+       "differs from what run.json records (each difference is printed)",
+       nullptr, [](O, S, A* a) { a->force = true; }},
+      {"--overwrite", "", kPathCommands | kRerun, Need::kOptional, false,
        "replace the records of an earlier run in --out (removes every record file and vtk/ "
        "first); without it such a directory is refused",
        nullptr, [](O, S, A* a) { a->overwrite = true; }},
@@ -292,6 +296,15 @@ std::vector<Option> MakeOptions() {
       {"--time-limit", "SECONDS", kPathCommands, Need::kOptional, false,
        "the time limit of each solve (default: none)", nullptr,
        [](O o, S v, A* a) { a->time_limit = PositiveNumber(o, v); }},
+      {"--repeat", "N", kCompare, Need::kOptional, false,
+       "solve every step N times from the same start (default 1): steps.csv records the first "
+       "answer, judged by the verdict, with the median time of the N solves and their min and "
+       "max; a repetition whose answer differs is flagged (repeats_agree, a warning)",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->repeat = ParseInteger(o, v);
+         if (a->repeat <= 0) Refuse(o, "must be a positive integer, got '" + v + "'");
+       }},
       {"--set", "KEY=VALUE", kProblemCommands, Need::kOptional, true,
        "change a problem parameter (`contactbench list` shows each problem's); a problem "
        "file's keys are length_scale, force_scale and load or arc_length, steps",
@@ -504,6 +517,13 @@ const std::vector<CommandInfo>& Commands() {
        "step's residual history and, for a comparison, the performance profiles and iteration "
        "histograms.",
        "OUT_DIR", "the --out directory of `contactbench run` or `contactbench compare`"},
+      {kRerun, "rerun",
+       "Runs the command DIR/run.json records again, into --out: the same options, with the "
+       "copy of the problem file (and its meshes) kept in DIR/problem/. Refused, with each "
+       "reason, when this binary, a linked library, the BLAS or the process count is not the "
+       "recorded one, or a copy's SHA-256 is not the recorded one, unless --force. "
+       "docs/records.md says which records a rerun reproduces.",
+       "DIR", "the --out directory of the `contactbench run` or `compare` to rerun"},
   };
   return commands;
 }

@@ -34,6 +34,7 @@ enum Command : unsigned {
   kExport = 1u << 3,
   kSchema = 1u << 4,
   kPlot = 1u << 5,
+  kRerun = 1u << 6,
 };
 
 struct CommandInfo {
@@ -62,6 +63,7 @@ struct RunArguments {
   std::string out;
   std::string export_format = "json";  // export: json or fclib
   bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
+  bool force = false;         // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
   FormulationConfig config;
   // --option KEY=VALUE (run) or FORMULATION:KEY=VALUE, by formulation ("" for unprefixed).
@@ -80,6 +82,7 @@ struct RunArguments {
   BifurcationMode bifurcations = kDefaultBifurcationMode;
   int save_every = 0;
   double time_limit = 0.0;
+  int repeat = 1;  // compare --repeat: every timed solve done this many times
   std::map<std::string, std::string> settings;
   std::string operand;           // the command's operand (plot: the run's directory)
   std::optional<int> plot_step;  // plot --step

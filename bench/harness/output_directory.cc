@@ -13,6 +13,7 @@
 
 #include "harness/options.h"
 #include "harness/record_schemas.h"
+#include "harness/run_inputs.h"
 
 namespace cb::harness {
 
@@ -73,7 +74,7 @@ OutputLock::~OutputLock() {
 }
 
 std::vector<std::string> RecordsIn(const std::string& directory) {
-  std::vector<std::string> names = {"run.json", "vtk"};
+  std::vector<std::string> names = {"run.json", "vtk", kInputsDirectory};
   for (const RecordDoc& doc : RecordDocs()) names.push_back(doc.file);
   std::vector<std::string> found;
   std::error_code ec;

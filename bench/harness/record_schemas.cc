@@ -236,6 +236,18 @@ const RecordSchema<AttemptRow>& StepsSchema() {
            [](const D& d) -> Cell { return d.record.branch_switch; }},
           {"tolerance", "the verdict's tolerance the attempt was judged to (`--tol`)",
            [](const D& d) -> Cell { return d.record.verdict.tolerance; }},
+          {"time_min_s",
+           "the fastest of the solve's timed repetitions (`compare --repeat`), seconds",
+           [](const D& d) -> Cell { return d.record.result.time_min_s; }},
+          {"time_max_s", "the slowest of them, seconds",
+           [](const D& d) -> Cell { return d.record.result.time_max_s; }},
+          {"time_samples",
+           "how many solves were timed (time_s is their median): 1, or `compare --repeat N`'s N",
+           [](const D& d) -> Cell { return d.record.result.time_samples; }},
+          {"repeats_agree",
+           "every repetition gave the first solve's answer (the one judged): the same status and "
+           "iterations, the point within `--tol` (relative)",
+           [](const D& d) -> Cell { return d.record.result.repeats_disagreement.empty(); }},
           ResultMessageColumn<D>(),
       }};
   return schema;

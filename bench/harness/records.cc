@@ -23,6 +23,12 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
   if (a.accepted) ++accepted_;
   iterations_.push_back(a.result.counts.iterations);
   solve_times_s_.push_back(a.result.time_s);
+  if (!a.result.repeats_disagreement.empty()) {
+    if (first_disagreement_.empty()) {
+      first_disagreement_ = "step " + std::to_string(a.step) + ", " + a.result.repeats_disagreement;
+    }
+    ++repeat_disagreements_;
+  }
   files_->steps().Write({label_, problem_, a});
   for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
   ShowProgress(a);

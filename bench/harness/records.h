@@ -51,6 +51,10 @@ class RunRecorder final : public PathObserver {
   // Per attempt, in order: the solver's iterations and the solve's wall time.
   const std::vector<int>& iterations() const { return iterations_; }
   const std::vector<double>& solve_times_s() const { return solve_times_s_; }
+  // Solves whose repetitions (compare --repeat) did not all give the first answer, and the
+  // first of them ("step 3, repetition 2: 7 iterations, not 6"; "" when none).
+  int repeat_disagreements() const { return repeat_disagreements_; }
+  const std::string& first_disagreement() const { return first_disagreement_; }
   // Ends the progress line, so that a message after the run starts a line of its own.
   void EndProgress() { progress_.End(); }
 
@@ -66,6 +70,8 @@ class RunRecorder final : public PathObserver {
   int total_steps_ = 0;
   std::vector<int> iterations_;
   std::vector<double> solve_times_s_;
+  int repeat_disagreements_ = 0;
+  std::string first_disagreement_;
   ProgressLine progress_;  // on a terminal only
 };
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "formulations/common/config.h"
 #include "step/formulation.h"
@@ -13,6 +14,8 @@ namespace cb {
 
 // Whether this build has Ipopt (defined by the adapter, or false by the stub).
 bool IpoptAvailable();
+// The version of Ipopt this build is linked with, from its headers or library; "" without it.
+std::string IpoptVersion();
 // Registry factories; without Ipopt they throw std::invalid_argument.
 std::unique_ptr<Formulation> MakeIpoptEnergy(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeIpoptMpcc(const FormulationConfig& config);

@@ -1,5 +1,7 @@
 #include "formulations/ipopt/ipopt_adapter.h"
 
+#include <IpoptConfig.h>
+
 #include <IpSolveStatistics.hpp>
 #include <algorithm>
 #include <sstream>
@@ -10,6 +12,7 @@
 namespace cb {
 
 bool IpoptAvailable() { return true; }
+std::string IpoptVersion() { return IPOPT_VERSION; }
 
 void IpoptCommonOptions::Read(OptionReader* reader) {
   tol = reader->GetReal("tol", tol);

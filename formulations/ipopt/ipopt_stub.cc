@@ -7,6 +7,7 @@
 namespace cb {
 
 bool IpoptAvailable() { return false; }
+std::string IpoptVersion() { return ""; }
 
 std::unique_ptr<Formulation> MakeIpoptEnergy(const FormulationConfig&) {
   throw std::invalid_argument("ipopt-energy: this build has no Ipopt");

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "formulations/common/config.h"
 #include "step/formulation.h"
@@ -37,6 +38,8 @@ namespace cb {
 
 // Whether this build has NLopt (defined by the adapter, or false by the stub).
 bool NloptAvailable();
+// The version of NLopt this build is linked with, from its headers or library; "" without it.
+std::string NloptVersion();
 // Registry factories; without NLopt they read the options, then throw std::invalid_argument.
 std::unique_ptr<Formulation> MakeNloptMerit(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeNloptEnergy(const FormulationConfig& config);

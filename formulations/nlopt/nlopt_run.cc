@@ -9,6 +9,11 @@
 namespace cb {
 
 bool NloptAvailable() { return true; }
+std::string NloptVersion() {
+  int major = 0, minor = 0, bugfix = 0;
+  nlopt_version(&major, &minor, &bugfix);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(bugfix);
+}
 
 NloptRun::NloptRun(nlopt_algorithm algorithm, unsigned n, const SolveControls& controls,
                    StepResult* result)

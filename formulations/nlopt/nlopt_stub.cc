@@ -9,6 +9,7 @@
 namespace cb {
 
 bool NloptAvailable() { return false; }
+std::string NloptVersion() { return ""; }
 
 std::unique_ptr<Formulation> MakeNloptMerit(const FormulationConfig& config) {
   ReadNloptMeritOptions(config);

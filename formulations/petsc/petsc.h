@@ -14,6 +14,8 @@ namespace cb {
 
 // Whether this build has PETSc (defined by the adapter, or false by the stub).
 bool PetscAvailable();
+// The version of PETSc this build is linked with, from its headers or library; "" without it.
+std::string PetscVersion();
 // Registry factories; without PETSc they throw std::invalid_argument. Backend option
 // `petsc_options`: a PETSc options string ("-snes_max_it 20 -pc_factor_mat_solver_type
 // superlu"), applied over the formulation's defaults (petsc_adapter.h).

@@ -1,5 +1,7 @@
 #include "formulations/petsc/petsc_adapter.h"
 
+#include <petscversion.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +16,10 @@
 namespace cb {
 
 bool PetscAvailable() { return true; }
+std::string PetscVersion() {
+  return std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR) + "." +
+         std::to_string(PETSC_VERSION_SUBMINOR);
+}
 
 // --- the process ------------------------------------------------------------------------------
 

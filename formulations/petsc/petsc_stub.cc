@@ -7,6 +7,7 @@
 namespace cb {
 
 bool PetscAvailable() { return false; }
+std::string PetscVersion() { return ""; }
 
 std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig&) {
   throw std::invalid_argument("petsc-rsls: this build has no PETSc");

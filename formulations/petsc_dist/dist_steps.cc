@@ -1,5 +1,6 @@
 #include "formulations/petsc_dist/dist_steps.h"
 
+#include <mpi.h>
 #include <petscsnes.h>
 
 #include <algorithm>
@@ -24,6 +25,15 @@
 namespace cb {
 
 bool DistAvailable() { return true; }
+std::string MpiVersion() {
+  // Allowed before MPI_Init (MPI 3.1 section 8.7).
+  char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};
+  int length = 0;
+  if (MPI_Get_library_version(text, &length) != MPI_SUCCESS) return "";
+  std::string version(text, static_cast<std::size_t>(length));
+  const auto end = version.find_first_of(",\n");  // "Open MPI v4.1.4, package: ..."
+  return end == std::string::npos ? version : version.substr(0, end);
+}
 
 namespace {
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "formulations/common/config.h"
@@ -17,6 +18,8 @@ namespace cb {
 
 // Whether this build has the distributed backend (PETSc with MPI).
 bool DistAvailable();
+// The MPI library the distributed backend is linked with ("Open MPI v4.1.4"); "" without it.
+std::string MpiVersion();
 
 // This process's rank and the number of processes of a distributed run: 0 and 1 until a
 // distributed formulation has started PETSc (and MPI), and always without PETSc.

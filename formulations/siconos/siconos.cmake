@@ -29,6 +29,24 @@ if(CONTACTBENCH_HAVE_SICONOS)
   target_include_directories(contactbench_formulations SYSTEM PRIVATE
     ${SICONOS_NUMERICS_INCLUDE_DIR} ${SICONOS_CONFIG_INCLUDE_DIR})
   target_link_libraries(contactbench_formulations PRIVATE ${SICONOS_NUMERICS_LIBRARY})
+  # Its version for run.json: the headers carry none, so the library file linked (symbolic
+  # links resolved) and, where dpkg knows the file, the Debian package's version.
+  file(REAL_PATH "${SICONOS_NUMERICS_LIBRARY}" siconos_library_file)
+  get_filename_component(siconos_version "${siconos_library_file}" NAME)
+  execute_process(COMMAND dpkg-query -S "${siconos_library_file}"
+                  OUTPUT_VARIABLE siconos_package OUTPUT_STRIP_TRAILING_WHITESPACE
+                  RESULT_VARIABLE failed ERROR_QUIET)
+  if(NOT failed)
+    string(REGEX REPLACE ":.*" "" siconos_package "${siconos_package}")
+    execute_process(COMMAND dpkg-query -W "-f=\${Version}" "${siconos_package}"
+                    OUTPUT_VARIABLE siconos_package_version OUTPUT_STRIP_TRAILING_WHITESPACE
+                    RESULT_VARIABLE failed ERROR_QUIET)
+    if(NOT failed)
+      set(siconos_version "${siconos_package_version} (${siconos_version})")
+    endif()
+  endif()
+  set_source_files_properties(${CMAKE_CURRENT_LIST_DIR}/siconos_adapter.cc PROPERTIES
+    COMPILE_DEFINITIONS CONTACTBENCH_SICONOS_VERSION="${siconos_version}")
   # For code that asks at compile time (the tests); the formulations ask SiconosAvailable().
   target_compile_definitions(contactbench_formulations PUBLIC CONTACTBENCH_HAVE_SICONOS=1)
   # The installed (static) library links the numerics library by its path.

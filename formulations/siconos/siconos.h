@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "formulations/common/config.h"
 #include "step/formulation.h"
@@ -13,6 +14,9 @@ namespace cb {
 
 // Whether this build has Siconos numerics (defined by the adapter, or false by the stub).
 bool SiconosAvailable();
+// The version of Siconos numerics this build is linked with, from its headers or library; ""
+// without it.
+std::string SiconosVersion();
 // Registry factories; without Siconos they throw std::invalid_argument.
 std::unique_ptr<Formulation> MakeSiconosLemke(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeSiconosNewtonFb(const FormulationConfig& config);

@@ -20,6 +20,9 @@
 namespace cb {
 
 bool SiconosAvailable() { return true; }
+// Siconos's headers carry no version: siconos.cmake names the library file linked and the
+// Debian package that holds it (its config-version file says 4.5.0 of the 4.4.0 package).
+std::string SiconosVersion() { return CONTACTBENCH_SICONOS_VERSION; }
 
 int SiconosLcpSolverId(SiconosLcpSolver solver) {
   switch (solver) {

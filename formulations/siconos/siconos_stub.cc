@@ -7,6 +7,7 @@
 namespace cb {
 
 bool SiconosAvailable() { return false; }
+std::string SiconosVersion() { return ""; }
 
 std::unique_ptr<Formulation> MakeSiconosLemke(const FormulationConfig&) {
   throw std::invalid_argument("siconos-lemke: this build has no Siconos numerics");

@@ -147,13 +147,38 @@ def read_benchmarks(path):
             picked.append(errors.iloc[0])
             continue
         median = g[g["aggregate_name"] == "median"]
-        picked.append(median.iloc[0] if len(median) else g.iloc[0])
+        row = (median.iloc[0] if len(median) else g.iloc[0]).copy()
+        # The range of the repetitions (the min and max statistics every binary adds); none for
+        # a single run or a JSON from before they were added.
+        for bound in ("min", "max"):
+            b = g[g["aggregate_name"] == bound]
+            row[f"real_time_{bound}"] = b.iloc[0]["real_time"] if len(b) else np.nan
+        picked.append(row)
     out = pd.DataFrame(picked).reset_index(drop=True)
     scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-    for column, src in (("seconds", "real_time"), ("cpu_seconds", "cpu_time")):
+    for column, src in (("seconds", "real_time"), ("cpu_seconds", "cpu_time"),
+                        ("seconds_min", "real_time_min"), ("seconds_max", "real_time_max")):
         out[column] = [v * scale.get(u, 1.0) if isinstance(u, str) else np.nan
                        for v, u in zip(out.get(src, np.nan), out.get("time_unit", ""))]
     return data.get("context", {}), out
+
+
+def time_range(row):
+    """' (min-max)' of a benchmark row's repetitions, '' when it has none."""
+    low, high = row.get("seconds_min", np.nan), row.get("seconds_max", np.nan)
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return ""
+    return f" ({fmt(low)}-{fmt(high)})"
+
+
+def bench_load(context):
+    """The load average (1 min) of a benchmark JSON's context at the start and, where
+    scripts/run_bench.sh added it, the end."""
+    start, end = context.get("load_avg"), context.get("load_avg_end")
+    if not start:
+        return "The load average was not recorded."
+    text = f"Load average (1 min): {start[0]:.2f} at the start"
+    return text + (f", {end[0]:.2f} at the end." if end else " (the end not recorded).")
 
 
 def machine_lines(results_dir):
@@ -205,6 +230,38 @@ def _steps_of(steps, formulation, start):
     return steps[(steps["formulation"] == formulation) & (steps["start"] == start)]
 
 
+def _time_bound(steps, column, pick):
+    """The fastest (pick=min) or slowest (max) solve time of `steps`: over their repetitions
+    (time_min_s, time_max_s of `compare --repeat`) where recorded, else over time_s."""
+    if not len(steps):
+        return float("nan")
+    values = steps[column] if column in steps else steps["time_s"]
+    return float(pick(values))
+
+
+def timing_line(set_dir, steps):
+    """How the set's times were taken: the repetitions of each solve, and the machine's load at
+    the start and the end (run.json)."""
+    samples = sorted(steps["time_samples"].unique()) if "time_samples" in steps else [1]
+    if samples == [1]:
+        how = "each solve timed once (a range is over the steps)"
+    else:
+        how = ("each solve timed " + "/".join(str(n) for n in samples)
+               + " times (compare --repeat): its time is the median, the range is over the "
+               "repetitions and the steps")
+    load = "the load was not recorded (run.json before its load_average)"
+    try:
+        with open(os.path.join(set_dir, "run.json")) as f:
+            averages = json.load(f).get("load_average") or {}
+        start, end = averages.get("start"), averages.get("end")
+        if start and end:
+            load = (f"load average (1 min) {start['1min']:.2f} at the start, "
+                    f"{end['1min']:.2f} at the end")
+    except (OSError, ValueError):
+        load = "no run.json: the load is unknown"
+    return f"Times: {how}; {load}."
+
+
 def aggregate(runs, steps):
     """Per formulation x start that ran: counts, success rate, shifted geometric means with
     failures charged, medians over accepted steps. Returns (table, skipped runs)."""
@@ -228,6 +285,8 @@ def aggregate(runs, steps):
             gm_time_ms=shifted_geometric_mean(t_ms, 0.0) if len(g) else float("nan"),
             sgm_iterations=shifted_geometric_mean(its) if len(g) else float("nan"),
             median_time_ms=acc["time_s"].median() * TIME_UNIT_MS if len(acc) else float("nan"),
+            min_time_ms=_time_bound(acc, "time_min_s", min) * TIME_UNIT_MS,
+            max_time_ms=_time_bound(acc, "time_max_s", max) * TIME_UNIT_MS,
             median_iterations=acc["iterations"].median() if len(acc) else float("nan"),
             total_time_s=g["time_s"].sum()))
     table = pd.DataFrame(rows)
@@ -467,11 +526,13 @@ def set_section(name, runs, steps, figures_dir, results_dir):
     if table.empty:
         return out + ["No formulation ran on this set.", ""]
     word = iteration_word_for(runs)
-    out += [f"Failures charged at {fmt(time_charge)} s (the run's time limit per solve) and "
+    out += [timing_line(os.path.join(results_dir, "compare", name), steps), "",
+            f"Failures charged at {fmt(time_charge)} s (the run's time limit per solve) and "
             f"{fmt(iter_charge, '.0f')} iterations (the largest count of the set). Shift 10 "
             "(times in ms). Ratios: this formulation's mean / the best mean of the set.", "",
             "| formulation | start | success | time SGM [ms] | time ratio | time ratio, "
-            "unshifted GM | iterations SGM | iterations ratio | median time, accepted [ms] | "
+            "unshifted GM | iterations SGM | iterations ratio | median time, accepted [ms] "
+            "(range) | "
             "median iterations, accepted | total time [s] |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for _, r in table.iterrows():
@@ -480,7 +541,8 @@ def set_section(name, runs, steps, figures_dir, results_dir):
                    f"({r['solved']}/{r['steps']}) | {fmt(r['sgm_time_ms'])} | "
                    f"{fmt(r['sgm_time_ms_ratio'])} | {fmt(r['gm_time_ms_ratio'])} | "
                    f"{fmt(r['sgm_iterations'])} | {fmt(r['sgm_iterations_ratio'])} | "
-                   f"{fmt(r['median_time_ms'])} | {fmt(r['median_iterations'], 'g')} | "
+                   f"{fmt(r['median_time_ms'])} ({fmt(r['min_time_ms'])}-"
+                   f"{fmt(r['max_time_ms'])}) | {fmt(r['median_iterations'], 'g')} | "
                    f"{fmt(r['total_time_s'])} |")
     for _, s in skipped.iterrows():
         out.append(f"| {s['formulation']} | {s['start']} | skipped: {s['message']} "
@@ -556,7 +618,7 @@ def scaling_section(results_dir, figures_dir):
     if not os.path.exists(path):
         return ["## Scaling of the P1 cold solve", "", "No `bench/scaling_benchmark.json` "
                 "(run `scripts/run_bench.sh`).", ""]
-    _, bench = read_benchmarks(path)
+    context, bench = read_benchmarks(path)
     s = scaling_rows(bench)
     out = ["## Scaling of the P1 cold solve (`scaling_benchmark`)", "",
            "One fixed-load solve of P1 `block` from the cold start (g0 = -1, r0 = +1) by a fresh "
@@ -565,7 +627,9 @@ def scaling_section(results_dir, figures_dir):
            "Growth exponent: least-squares slope of log time against log d over the verified "
            "sizes, of the wall time and of the process CPU time (the latter is less disturbed "
            "by other load on the machine). Memory: peak resident set during the solve, and "
-           "below its increase over the resident set before it.", ""]
+           "below its increase over the resident set before it. A repeated time is the median "
+           "with the range of the repetitions (min-max); a time without a range is one "
+           "sample. " + bench_load(context), ""]
     if s.empty:
         return out + ["No scaling benchmark rows.", ""]
     ns = sorted(s["n"].unique())
@@ -588,7 +652,8 @@ def scaling_section(results_dir, figures_dir):
                 cells.append(f"({reasons[msg]})")
             else:
                 mem = r.get("peak_rss_mb", np.nan)
-                cells.append(f"{fmt(r['seconds'])} s, {fmt(r.get('iterations'), '.0f')} it, "
+                cells.append(f"{fmt(r['seconds'])} s{time_range(r)}, "
+                             f"{fmt(r.get('iterations'), '.0f')} it, "
                              f"{fmt(mem, '.0f')} MB")
         ok = g[~g["error_occurred"]]
         k = growth_exponent(ok["d"], ok["seconds"])

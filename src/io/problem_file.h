@@ -10,6 +10,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "problems/problem.h"
 
@@ -26,6 +27,11 @@ Problem LoadProblemFile(const std::string& path,
 Problem ParseProblemFile(const std::string& text, const std::string& file,
                          const std::string& directory,
                          const std::map<std::string, std::string>& settings = {});
+
+// The files a problem file's text names besides itself, as written (a Gmsh mesh's
+// "mesh": {"file": F}; read relative to the problem file's directory), so that a run can keep
+// copies of everything it read. Empty for text that is no JSON object.
+std::vector<std::string> ReferencedFiles(const std::string& text);
 
 // The problem as the text of a problem file which reads back to the same model (sizes, energy,
 // forces, gaps, load pattern, scales, loading). Throws std::invalid_argument for a model with

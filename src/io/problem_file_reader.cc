@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -976,6 +977,16 @@ Problem LoadProblemFile(const std::string& path,
   const std::string text = ReadInputFile(path, "problem file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);
+}
+
+std::vector<std::string> ReferencedFiles(const std::string& text) {
+  const auto root = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!root.is_object()) return {};
+  const auto mesh = root.find("mesh");
+  if (mesh == root.end() || !mesh->is_object()) return {};
+  const auto file = mesh->find("file");
+  if (file == mesh->end() || !file->is_string()) return {};
+  return {file->get<std::string>()};
 }
 
 }  // namespace cb::io

@@ -33,6 +33,10 @@ bool PathOptions::IsValid(std::string* why) const {
     *why = "max_cutbacks must be >= 0";
     return false;
   }
+  if (solve_repeats < 1) {
+    *why = "solve_repeats must be >= 1";
+    return false;
+  }
   return stagnation.IsValid(why);
 }
 

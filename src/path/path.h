@@ -41,6 +41,9 @@ struct PathOptions {
   // (stagnation.h): then it ends as kFailed.
   StagnationOptions stagnation;
   SolveControls controls;  // per-step time limit and interrupt hook
+  // Every solve is done this many times from the same start, for the spread of its time
+  // (step_solve.h): the first answer is the one judged and kept.
+  int solve_repeats = 1;
 
   bool IsValid(std::string* why) const;
   // Throws std::invalid_argument("path options: " + why) when not valid.

@@ -15,7 +15,11 @@ struct JudgedStep {
 };
 
 // Solves `problem` from `start` with options.controls and judges the answer to
-// options.tolerance.
+// options.tolerance. With options.solve_repeats = N > 1 the solve is done N times from the
+// same start, for the spread of its time: the first answer is the one judged and returned,
+// its time_s is the median of the N times (time_min_s, time_max_s, time_samples), and a
+// repetition whose answer differs from the first (status, iterations, or the point beyond
+// options.tolerance, relative) is said in result.repeats_disagreement.
 JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
                          const StartPoint& start, const PathOptions& options);
 

@@ -37,6 +37,8 @@ StepResult Formulation::Solve(const StepProblem& step, const StartPoint& start,
   Stopwatch clock;
   DoSolve(step, start, controls, &result);
   result.time_s = clock.Seconds();
+  result.time_min_s = result.time_max_s = result.time_s;
+  result.time_samples = 1;
   if (result.point.du.size() != d || result.point.g.size() != nc || result.point.r.size() != nc) {
     throw std::logic_error(name() + " returned a point of the wrong size");
   }

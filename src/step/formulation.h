@@ -55,7 +55,15 @@ struct StepResult {
   Status status = Status::kNotRun;  // the solver's own claim ("found")
   std::string message;
   SolveCounts counts;
-  double time_s = 0.0;  // wall time of the solve alone
+  double time_s = 0.0;  // wall time of the solve alone (of repeated solves: their median)
+  // The spread of time_s: one solve's time, or with PathOptions::solve_repeats > 1 the
+  // fastest and slowest of the repetitions (step_solve.h), and how many were timed.
+  double time_min_s = 0.0;
+  double time_max_s = 0.0;
+  int time_samples = 1;
+  // Whether every repetition gave the first one's answer ("" when they agreed or there was
+  // one solve; else what differed, e.g. "repetition 2: 7 iterations, not 6").
+  std::string repeats_disagreement;
   std::vector<IterationRecord> history;
   std::map<std::string, std::string> details;  // backend specifics (raw return codes, ...)
   std::any warm_state;                         // what a warm start of the next step may reuse

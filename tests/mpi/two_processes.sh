@@ -21,6 +21,10 @@ check() {
   status=$?
   if [ $status -ne 0 ]; then cat "$work/$label-dist.log"; exit 1; fi
   echo "$label: $formulation on 2 processes against implicit-fb"
+  # run.json records the process count (docs/scale-out.md).
+  python3 -c 'import json, sys; n = [json.load(open(d + "/run.json"))["processes"]
+for d in sys.argv[1:]]; sys.exit(0 if n == [1, 2] else "run.json processes: %s, not [1, 2]" % n)' \
+    "$work/$label-serial" "$work/$label-dist" || exit 1
   python3 "$source/scripts/compare_answers.py" "$work/$label-serial" "$work/$label-dist" || exit 1
 }
 

@@ -1,9 +1,11 @@
 """The aggregation maths of results/plotlib/comparison.py on small hand-made tables whose
 answers are worked out by hand. Run: /usr/bin/python3 -m unittest discover -s tests/python
 (ctest runs it as `python.comparison`)."""
+import json
 import math
 import os
 import sys
+import tempfile
 import unittest
 
 import numpy as np
@@ -112,6 +114,31 @@ class Aggregate(unittest.TestCase):
         gain = c.warm_gain(table).set_index("formulation")
         self.assertAlmostEqual(gain.loc["x", "median_time"], 4.0)
         self.assertAlmostEqual(gain.loc["x", "sgm_iterations"], 1.0)
+
+    def test_time_range_over_repetitions_and_accepted_steps(self):
+        # Without the repetition columns the range is over the accepted steps' times.
+        table, *_ = c.aggregate(self.runs, self.steps)
+        y = table[table["formulation"] == "y"].iloc[0]
+        self.assertEqual((y["min_time_ms"], y["max_time_ms"]), (2.0, 2.0))  # step 2 failed
+        # compare --repeat: the fastest and slowest repetition of the accepted steps.
+        repeated = self.steps.assign(time_min_s=self.steps["time_s"] / 2,
+                                     time_max_s=self.steps["time_s"] * 3, time_samples=5)
+        table, *_ = c.aggregate(self.runs, repeated)
+        x = table[table["formulation"] == "x"].iloc[0]
+        self.assertAlmostEqual(x["min_time_ms"], 0.5)
+        self.assertAlmostEqual(x["median_time_ms"], 1.0)
+        self.assertAlmostEqual(x["max_time_ms"], 3.0)
+        with tempfile.TemporaryDirectory() as d:
+            self.assertIn("no run.json: the load is unknown", c.timing_line(d, repeated))
+            with open(os.path.join(d, "run.json"), "w") as f:
+                json.dump({"command": "compare"}, f)  # written before run.json had the load
+            self.assertIn("the load was not recorded", c.timing_line(d, repeated))
+            with open(os.path.join(d, "run.json"), "w") as f:
+                json.dump({"load_average": {"start": {"1min": 1.5}, "end": {"1min": 2.25}}}, f)
+            line = c.timing_line(d, repeated)
+        self.assertIn("each solve timed 5 times", line)
+        self.assertIn("load average (1 min) 1.50 at the start, 2.25 at the end", line)
+        self.assertIn("each solve timed once", c.timing_line(d, self.steps))
 
     def test_histogram(self):
         h = c.histogram(self.steps, "y", "warm")
