@@ -34,7 +34,7 @@ Json ReadRunJson(const std::string& dir) {
     Refuse(dir, "holds no run.json (give the --out directory of a run or a comparison)");
   }
   std::ifstream in(file);
-  const Json run = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  Json run = Json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (run.is_discarded() || !run.is_object()) Refuse(dir, "run.json is not a JSON object");
   return run;
 }
