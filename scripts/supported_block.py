@@ -17,8 +17,10 @@ def block(kind, n):
     side = 2.0 if kind == "p1" else 1.0
     h = side / n
     node_id = lambda i, j: j * (n + 1) + i + 1  # noqa: E731
-    nodes = [{"id": node_id(i, j), "x": [i * h, j * h]} for j in range(n + 1) for i in range(n + 1)]
-    elements = [{"nodes": [node_id(i, j), node_id(i + 1, j), node_id(i + 1, j + 1), node_id(i, j + 1)]}
+    nodes = [{"id": node_id(i, j), "x": [i * h, j * h]}
+             for j in range(n + 1) for i in range(n + 1)]
+    elements = [{"nodes": [node_id(i, j), node_id(i + 1, j), node_id(i + 1, j + 1),
+                           node_id(i, j + 1)]}
                 for j in range(n) for i in range(n)]
     bottom = [node_id(i, 0) for i in range(n + 1)]
     left = [node_id(0, j) for j in range(n + 1)]
@@ -29,7 +31,7 @@ def block(kind, n):
         top = [[node_id(i, n), node_id(i + 1, n)] for i in range(n)]
         problem.update({
             "name": f"supported-floor-n{n}",
-            "description": "n x n Q4 block on a frictionless floor, top pressure, one node held in x",
+            "description": "n x n Q4 block on a floor, top pressure, one node held in x",
             "thickness": 0.1, "material": {"E": 1000.0, "nu": 0.25},
             "supports": [{"node": node_id(n // 2, 0), "fixed": ["x"]}],
             "tractions": [{"edges": top, "traction": [0.0, -10.0]}],
