@@ -1,7 +1,5 @@
 #include "formulations/petsc_dist/field_split.h"
 
-#include "formulations/petsc_dist/node_blocks.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -9,6 +7,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "formulations/petsc_dist/node_blocks.h"
 
 namespace cb {
 

@@ -61,9 +61,9 @@ NodeBlocks::NodeBlocks(MPI_Comm comm, const ElasticBody& body, PetscInt size, Pe
   for (PetscInt i = first; i < last; ++i) to.push_back(Blocked(i));
   IS from_is = nullptr, to_is = nullptr;
   Check(ISCreateStride(comm, last - first, first, 1, &from_is), "ISCreateStride");
-  Check(ISCreateGeneral(comm, static_cast<PetscInt>(to.size()), to.data(), PETSC_COPY_VALUES,
-                        &to_is),
-        "ISCreateGeneral");
+  Check(
+      ISCreateGeneral(comm, static_cast<PetscInt>(to.size()), to.data(), PETSC_COPY_VALUES, &to_is),
+      "ISCreateGeneral");
   Check(VecScatterCreate(reduced_template_, from_is, blocked_template_, to_is, &scatter_),
         "VecScatterCreate");
   Check(ISDestroy(&from_is), "ISDestroy");

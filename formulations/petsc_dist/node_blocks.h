@@ -23,8 +23,7 @@ class NodeBlocks {
  public:
   // For a system of `size` rows whose first body.num_dofs() are du, this process owning the
   // rows [first, last). Collective.
-  NodeBlocks(MPI_Comm comm, const ElasticBody& body, PetscInt size, PetscInt first,
-             PetscInt last);
+  NodeBlocks(MPI_Comm comm, const ElasticBody& body, PetscInt size, PetscInt first, PetscInt last);
   ~NodeBlocks();
   NodeBlocks(const NodeBlocks&) = delete;
   NodeBlocks& operator=(const NodeBlocks&) = delete;
