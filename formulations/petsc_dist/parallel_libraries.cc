@@ -33,13 +33,17 @@ bool SeveralProcessesLaunched() {
 }
 
 // The loaded libraries whose file name starts with one of the parallel libraries' names (and
-// is not a sequential one): Open MPI's C and Fortran bindings and the parallel MUMPS.
+// is not a sequential one): Open MPI's C and Fortran bindings, the parallel MUMPS and ScaLAPACK
+// (its BLACS: the sequential MUMPS and its libmpiseq define stand-ins of blacs_gridinit_ that
+// stop the process, "BLACS_GRIDINIT should not be called", when MUMPS on several processes
+// calls them for its root's dense ScaLAPACK factorisation).
 std::vector<std::string> LoadedParallelLibraries() {
   std::vector<std::string> found;
   auto visit = [](dl_phdr_info* info, std::size_t, void* data) {
     const std::string path = info->dlpi_name != nullptr ? info->dlpi_name : "";
     const std::string file = path.substr(path.find_last_of('/') + 1);
-    for (const char* prefix : {"libmpi_mpifh.so", "libmpi.so", "libmumps_common-", "libdmumps-"}) {
+    for (const char* prefix :
+         {"libmpi_mpifh.so", "libmpi.so", "libmumps_common-", "libdmumps-", "libscalapack-"}) {
       if (file.rfind(prefix, 0) == 0 && !IsSequential(file)) {
         static_cast<std::vector<std::string>*>(data)->push_back(path);
       }
