@@ -23,11 +23,14 @@ bool IsSequential(const std::string& library) {
   return library.find("_seq") != std::string::npos || library.find("mpiseq") != std::string::npos;
 }
 
-// More than one process by the launcher's word, before MPI is initialised.
-bool SeveralProcessesLaunched() {
+// Started by an MPI launcher (one process or several), before MPI is initialised. One process
+// under mpirun needs the parallel libraries first too: PETSc's MPI_Init then reaches Open MPI
+// while the stand-in's MPI_Finalize would take the finalisation, and mpirun reports the
+// process as ended without finalising (status 1 after verified records).
+bool LaunchedByMpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
     const char* value = std::getenv(name);
-    if (value != nullptr && std::atoi(value) > 1) return true;
+    if (value != nullptr && std::atoi(value) >= 1) return true;
   }
   return false;
 }
@@ -65,7 +68,7 @@ std::string SequentialStandIn() {
 }
 
 std::string ParallelLibrariesPreload() {
-  if (!SeveralProcessesLaunched() || SequentialStandIn().empty()) return "";
+  if (!LaunchedByMpi() || SequentialStandIn().empty()) return "";
   std::string list;
   for (const std::string& path : LoadedParallelLibraries())
     list += (list.empty() ? "" : ":") + path;
