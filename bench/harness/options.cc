@@ -340,6 +340,14 @@ std::vector<Option> MakeOptions() {
        "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
        "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"",
        nullptr, [](O, S v, A* a) { a->petsc_options = v; }},
+      {"--step", "N", kExport, Need::kOptional, false,
+       "with --format fclib, a path's step N (traced by implicit-fb) at its load, with its "
+       "answer as /solution and step N - 1's state as /guesses/1",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->export_step = ParseInteger(o, v);
+         if (*a->export_step <= 0) Refuse(o, "must be a positive integer");
+       }},
       {"--step", "N", kPlot, Need::kOptional, false,
        "the step whose residual history is drawn (default: the one with the most iterations)",
        nullptr,

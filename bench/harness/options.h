@@ -63,6 +63,7 @@ struct RunArguments {
   std::string reference = "implicit-fb";  // compare
   std::string out;
   std::string export_format = "json";  // export: json or fclib
+  std::optional<int> export_step;      // export --format fclib --step N: a path's step N
   bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
   bool force = false;         // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
