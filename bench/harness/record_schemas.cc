@@ -480,7 +480,7 @@ namespace {
 
 // A problem set's solve: what its attempt says, or `skipped` for a formulation that refused.
 template <typename Value>
-Cell OfAttempt(const ProblemSetRow& d, Value (*value)(const StepAttempt&), Cell otherwise) {
+Cell OfAttempt(const ProblemSetRow& d, Value (*value)(const StepAttempt&), const Cell& otherwise) {
   return d.attempt != nullptr ? Cell(value(*d.attempt)) : otherwise;
 }
 
