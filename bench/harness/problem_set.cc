@@ -160,8 +160,8 @@ std::vector<std::unique_ptr<Formulation>> MakeFormulations(const RunArguments& a
   return formulations;
 }
 
-// Every file loaded once before any work, so that a bad one is refused (exit 2) with nothing
-// run; the notes of each go to run.json, prefixed with its problem's name.
+// Every file loaded once before any work, its guesses too, so that a bad one is refused (exit
+// 2) with nothing run; the notes of each go to run.json, prefixed with its problem's name.
 void CheckFiles(const RunArguments& a, const std::vector<std::string>& files, RunJson* record) {
   std::set<std::string> names;
   for (const auto& file : files) {
@@ -170,6 +170,7 @@ void CheckFiles(const RunArguments& a, const std::vector<std::string>& files, Ru
       throw InputError("--problem-dir: two problems named '" + problem.name +
                        "' (the records tell problems apart by name)");
     }
+    StartsOf(file, problem);
     for (const auto& note : problem.notes)
       record->problem_notes.push_back(problem.name + ": " + note);
   }
