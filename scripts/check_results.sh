@@ -17,11 +17,13 @@
 #                 is printed as without it. Then commit them, saying what moved and why.
 #   --comparison  instead, the summary check of the comparison sets: replay the first
 #                 FULL_STEPS (default 100) steps of the sets arch-flat and arch-curved and the
-#                 whole of block (scripts/run_compare.sh, about 40 s) and compare with the
-#                 committed sets over the same steps by scripts/diff_comparison.py: per
-#                 formulation x start the verified steps and the median iterations, as
-#                 COMPARISON.md aggregates them (time-limited solves aside). The prefix and
-#                 step-size sets and the benchmarks are not replayed.
+#                 whole of block and of the FCLIB problem set fclib (one repetition each;
+#                 scripts/run_compare.sh, about a minute) and compare with the committed sets
+#                 over the same steps by scripts/diff_comparison.py: per formulation x start
+#                 the verified steps and the median iterations, as COMPARISON.md aggregates
+#                 them, and per FCLIB problem x formulation x start the status and iterations
+#                 (time-limited solves aside). The prefix and step-size sets and the benchmarks
+#                 are not replayed.
 # Environment: BUILD_DIR (default build/: the contactbench built there is run, nothing is built),
 # FULL_STEPS (--comparison: the steps replayed, default 100),
 # KEEP_DIR=DIR keeps the rerun's records in DIR (new or empty, not inside results/) instead of a
@@ -62,8 +64,8 @@ fi
 start=$SECONDS
 if ((comparison)); then
   SKIP_SETUP=1 BUILD_DIR="$build" RESULTS_DIR="$tmp/results" FULL_STEPS="${FULL_STEPS:-100}" \
-    "$here/scripts/run_compare.sh" arch-flat arch-curved block >"$tmp/log.txt" 2>&1
-  echo "check_results: replayed arch-flat and arch-curved (${FULL_STEPS:-100} steps) and block" \
+    FCLIB_REPEAT=1 "$here/scripts/run_compare.sh" arch-flat arch-curved block fclib >"$tmp/log.txt" 2>&1
+  echo "check_results: replayed arch-flat and arch-curved (${FULL_STEPS:-100} steps), block and fclib" \
        "in $((SECONDS - start)) s (log: $tmp/log.txt)" >&2
   /usr/bin/python3 "$here/scripts/diff_comparison.py" "$here/results" "$tmp/results"
   status=$?

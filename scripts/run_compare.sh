@@ -28,7 +28,7 @@
 #                            500, 200, 100 on P2 and 500, 250, 100, 50 on P3. Warm start, the
 #                            formulations of the full paths. Records go to
 #                            RESULTS_DIR/robustness/<problem>/theta-<theta>/.
-#   fclib                    opt-in (not among the default sets): the problem set of the FCLIB
+#   fclib                    the problem set of the FCLIB
 #                            files in FCLIB_DIR (default tests/data/fclib, the five committed
 #                            Siconos files), read with friction dropped (mu = 0), every available
 #                            formulation on every file, cold and from each file's guesses, each
@@ -44,12 +44,11 @@
 # Problem parameters are the builders' defaults, whatever they are when this runs: nothing here
 # depends on the reconstruction choices.
 #
-# Run time on the 2-core machine of results/README.md, which gives each set's: 62.5 minutes for the
-# committed sets, on a machine loaded by other jobs (load 4-8). Before the peers and the
-# step-size set joined, the five other sets took 28.5 minutes (with run_bench.sh busy on the
-# other core for the first 22): arch-flat 246 s, arch-curved 425 s, arch-flat-prefix 215 s,
-# arch-curved-prefix 818 s (~550 s nlopt-mpcc, ~250 s nlopt-merit), block 6 s.
-# Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
+# Run time on the 2-core machine of results/README.md (the committed sets, at raised priority
+# with builds sharing the cores, load 7-10): 32 minutes for the six sets (arch-flat 205 s,
+# arch-curved 398 s, arch-flat-prefix 184 s, arch-curved-prefix 816 s, block 27 s, robustness
+# 125 s) and 159 s for fclib; REPORT.md's table of the records' run times has each.
+# Usage: scripts/run_compare.sh [SET ...]   (default: all seven sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
 # BLOCK_REPEAT (5), FCLIB_DIR (tests/data/fclib), FCLIB_REPEAT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),
@@ -92,7 +91,7 @@ compare() {  # compare DIR ARGS...
 }
 
 sets=("$@")
-((${#sets[@]})) || sets=(arch-flat arch-curved arch-flat-prefix arch-curved-prefix block robustness)
+((${#sets[@]})) || sets=(arch-flat arch-curved arch-flat-prefix arch-curved-prefix block robustness fclib)
 for set in "${sets[@]}"; do
   case "$set" in
     arch-flat|arch-curved)
