@@ -12,7 +12,8 @@
 # adds, so each time is a median with its range), except where a benchmark fixes its own
 # (solves of seconds are measured once, one sample with no range; see each binary's header
 # comment). The JSON's context holds the load average at the start (Google Benchmark's
-# load_avg); this script adds load_avg_end, read when the binary has finished.
+# load_avg); this script adds load_avg_end, read when the binary has finished, the commit of the
+# build (contactbench_commit) and the binary's wall time (wall_time_s).
 # Run time on the 2-core machine of results/README.md, measured on the quiet machine: 16 minutes
 # (implicit_fb_benchmark 469 s, formulation_step_benchmark 255 s, scaling_benchmark 228 s).
 # Usage: scripts/run_bench.sh [extra Google Benchmark flags, e.g. --benchmark_filter=...]
@@ -47,14 +48,19 @@ for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark
   fi
   ((rc == 0)) || { echo "   ($binary failed)" >&2; status=1; }
   if [[ -s "$out/$binary.json" ]]; then
-    python3 - "$out/$binary.json" <<'PY' || status=1
+    commit=$("$build/bin/contactbench" --version 2>/dev/null | sed -n 's/.*(commit \(.*\)).*/\1/p')
+    python3 - "$out/$binary.json" "${commit:-unknown}" "$((SECONDS - start))" <<'PY' || status=1
 import json
 import os
 import sys
-path = sys.argv[1]
+path, commit, wall = sys.argv[1], sys.argv[2], int(sys.argv[3])
 with open(path) as f:
     report = json.load(f)
 report["context"]["load_avg_end"] = list(os.getloadavg())
+# The build the binary came from (the contactbench beside it) and the run's wall time: REPORT.md's
+# table of the records' commits and run times reads them (results/plotlib/provenance.py).
+report["context"]["contactbench_commit"] = commit
+report["context"]["wall_time_s"] = wall
 with open(path + ".tmp", "w") as f:
     json.dump(report, f, indent=2)
 os.replace(path + ".tmp", path)

@@ -59,12 +59,15 @@ def _benchmarks(results_dir):
                 context = json.load(f).get("context", {})
         except ValueError:
             continue
-        load = context.get("load_avg")
-        out.append("| benchmark `%s` (`scripts/run_bench.sh`) | - | (not recorded) | %s | "
-                   "not recorded%s |" % (
-                       os.path.basename(path), context.get("date", "?"),
-                       "; load average at the start %s" % ", ".join("%.1f" % x for x in load)
-                       if load else ""))
+        load, end = context.get("load_avg"), context.get("load_avg_end")
+        commit = context.get("contactbench_commit")
+        wall = context.get("wall_time_s")
+        out.append("| benchmark `%s` (`scripts/run_bench.sh`) | - | %s | %s | %s%s%s |" % (
+            os.path.basename(path), commit[:7] if commit else "(not recorded)",
+            context.get("date", "?"), "%d s" % wall if wall is not None else "not recorded",
+            "; load average at the start %s" % ", ".join("%.1f" % x for x in load)
+            if load else "",
+            ", at the end %s" % ", ".join("%.1f" % x for x in end) if end else ""))
     return out
 
 
