@@ -71,12 +71,11 @@ void PrepareOutput(const std::string& dir) {
   if (!std::filesystem::is_directory(dir, ec)) {
     throw InputError("--out: '" + dir + "' exists and is not a directory");
   }
-  const std::string probe = dir + "/.contactbench_write_test";
-  {
-    std::ofstream f(probe);
-    if (!f) throw InputError("--out: the directory '" + dir + "' is not writable");
+  try {
+    ProbeWritable(dir + "/.contactbench_write_test");
+  } catch (const WriteError& e) {
+    throw InputError("--out: the directory '" + dir + "' is not writable: " + e.what());
   }
-  std::filesystem::remove(probe, ec);
 }
 
 namespace {

@@ -23,6 +23,11 @@ class OutputLock {
   int fd_ = -1;
 };
 
+// Makes and removes the empty file `path` (a probe that the directory is writable), never
+// through a symbolic link: a link of that name is refused, a regular file left by a killed run
+// is replaced. Throws WriteError.
+void ProbeWritable(const std::string& path);
+
 // The record files and directories of a run found in DIR (run.json, every record file of
 // docs/records.md, vtk/).
 std::vector<std::string> RecordsIn(const std::string& directory);

@@ -8,6 +8,7 @@
 
 #include "core/csv.h"
 #include "formulations/petsc_dist/petsc_dist.h"
+#include "harness/output_directory.h"
 
 #ifdef CONTACTBENCH_HAVE_PETSC
 #include <mpi.h>
@@ -43,16 +44,14 @@ bool ProcessZeroSays(bool ready) {
 void ProbeDirectory(const std::string& directory) {
   const std::string probe =
       directory + "/.contactbench_write_test_" + std::to_string(DistributedRank());
-  {
-    std::ofstream f(probe);
-    if (!f) {
-      throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
-                                  " cannot write there (is --out on a file system every "
-                                  "process shares?)");
-    }
+  try {
+    ProbeWritable(probe);
+  } catch (const WriteError& e) {
+    throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
+                                " cannot write there (is --out on a file system every "
+                                "process shares?): " +
+                                e.what());
   }
-  std::error_code ec;
-  std::filesystem::remove(probe, ec);
 }
 
 void ProbeOnEveryProcess(const std::string& directory) {
