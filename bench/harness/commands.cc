@@ -281,8 +281,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   // The saved states are files (VTK among them): only in an output directory.
   std::optional<SnapshotWriter> snapshots;
   if (target.memory == nullptr) snapshots.emplace(a.out, problem, a.save_every);
-  ready->Ready(a.out + "/vtk");  // the other processes of a distributed run may write there now
-  std::vector<PathObserver*> watching{&recorder};
+  ready->Ready(a.out + "/vtk");     // the other processes of a distributed run may write there now
+  AgreedRecords agreed(&recorder);  // with the other processes of a distributed run
+  std::vector<PathObserver*> watching{&agreed};
   if (snapshots) watching.push_back(&*snapshots);
   ObserverTee observers(watching);
   const PathSummary summary = [&] {
@@ -294,7 +295,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
     const Activity writing("writing the final state");
     // The snapshot first: in a distributed run the last step all processes take together.
     if (snapshots) snapshots->Save(summary.final_state, summary.accepted_steps, "final");
-    WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
+    OnEveryProcess("writing the final state", [&] {
+      WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
+    });
   }
   record->runs = 1;
   record->attempts = summary.attempts;
@@ -317,9 +320,12 @@ int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formul
               const PathOptions& options) {
   if (!AwaitOutputReady(a.out + "/vtk")) return kExitFailure;
   SnapshotWriter pieces(a.out, problem, a.save_every);
-  const PathSummary summary = TraceProblem(problem, formulation, options, &pieces);
+  AgreedRecords agreed(nullptr);  // process 0's record writes, agreed (process_agreement.h)
+  ObserverTee observers({&agreed, &pieces});
+  const PathSummary summary = TraceProblem(problem, formulation, options, &observers);
   if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();  // as process 0 does
   pieces.Save(summary.final_state, summary.accepted_steps, "final");
+  OnEveryProcess("writing the final state", [] {});  // process 0 writes it
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   return summary.status == Status::kConverged ? kExitOk : kExitFailure;
 }

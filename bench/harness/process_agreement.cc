@@ -79,6 +79,24 @@ void OnEveryProcess(const std::string& what, const std::function<void()>& work) 
   }
 }
 
+void AgreedRecords::OnAttempt(const StepAttempt& attempt) {
+  OnEveryProcess("writing the records of a step", [&] {
+    if (records_ != nullptr) records_->OnAttempt(attempt);
+  });
+}
+
+void AgreedRecords::OnKink(const KinkRecord& kink) {
+  OnEveryProcess("writing the record of a kink", [&] {
+    if (records_ != nullptr) records_->OnKink(kink);
+  });
+}
+
+void AgreedRecords::OnCriticalPoint(const CriticalPointRecord& point) {
+  OnEveryProcess("writing the record of a critical point", [&] {
+    if (records_ != nullptr) records_->OnCriticalPoint(point);
+  });
+}
+
 OutputReadyWord::~OutputReadyWord() {
   if (!given_ && Distributed()) ProcessZeroSays(false);
 }

@@ -8,12 +8,33 @@
 #include <functional>
 #include <string>
 
+#include "path/path.h"
+
 namespace cb::harness {
 
 // Runs `work` on this process; then, a collective (every process calls it at the same point),
 // throws on every process when it threw on any: there its own exception, elsewhere a
 // std::runtime_error naming the lowest failing process and `what` it was doing.
 void OnEveryProcess(const std::string& what, const std::function<void()>& work);
+
+// Process 0's records of the path, agreed with the other processes at every event: each
+// process of a distributed run wraps its own writer (process 0 its records, the others
+// nothing, `records` null) so that every event is one OnEveryProcess, at the same point of the
+// path on every process. A record write that fails on process 0 (a full disk) then stops every
+// process there together, each unwinding the same solver objects, whose destructors are
+// collectives too; without the agreement process 0 would unwind alone and wait in a destructor
+// for processes that wait in the next solve (issue 30). Put it before the other observers of a
+// tee, so that each process enters its later collectives (the saved states) in the same order.
+class AgreedRecords final : public PathObserver {
+ public:
+  explicit AgreedRecords(PathObserver* records) : records_(records) {}
+  void OnAttempt(const StepAttempt& attempt) override;
+  void OnKink(const KinkRecord& kink) override;
+  void OnCriticalPoint(const CriticalPointRecord& point) override;
+
+ private:
+  PathObserver* records_;
+};
 
 // Process 0's word to the others that the output directory is ready (created, claimed, its
 // vtk/ folder made): Ready() gives it once; if it never did, the destructor gives the word of a
