@@ -81,7 +81,8 @@ void ProbeWritable(const std::string& path) {
 }
 
 std::vector<std::string> RecordsIn(const std::string& directory) {
-  std::vector<std::string> names = {"run.json", "vtk", kInputsDirectory};
+  // figures/: `plot`'s default output, which would otherwise outlive the records it drew.
+  std::vector<std::string> names = {"run.json", "vtk", kInputsDirectory, "figures"};
   for (const RecordDoc& doc : RecordDocs()) names.push_back(doc.file);
   std::vector<std::string> found;
   std::error_code ec;

@@ -29,7 +29,7 @@ class OutputLock {
 void ProbeWritable(const std::string& path);
 
 // The record files and directories of a run found in DIR (run.json, every record file of
-// docs/records.md, vtk/).
+// docs/records.md, vtk/, and figures/ that `plot` writes there by default).
 std::vector<std::string> RecordsIn(const std::string& directory);
 
 // Refuses (UsageError) a directory that holds records, unless `overwrite`: then removes them.
