@@ -151,8 +151,11 @@ Problem LoadProblem(const RunArguments& a) {
   const Activity building("building the problem");
   Problem problem;
   try {
-    problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
-                                      : MakeProblem(a.problem, a.settings);
+    // --allow-memory lifts the bound on a problem file's size too (io/input_bounds.h).
+    problem = !a.problem_file.empty()
+                  ? io::LoadProblemFile(a.problem_file, a.settings,
+                                        a.allow_memory ? 0 : io::kProblemFileMaxBytes)
+                  : MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what() + SettingSuggestion(a));
   }

@@ -971,10 +971,10 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
   return problem;
 }
 
-Problem LoadProblemFile(const std::string& path,
-                        const std::map<std::string, std::string>& settings) {
+Problem LoadProblemFile(const std::string& path, const std::map<std::string, std::string>& settings,
+                        std::uintmax_t max_bytes) {
   if (IsFclibPath(path)) return LoadFclibFile(path, settings);
-  const std::string text = ReadInputFile(path, "problem file");
+  const std::string text = ReadInputFile(path, "problem file", max_bytes, "--allow-memory");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);
 }
