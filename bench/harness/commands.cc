@@ -66,6 +66,10 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
 
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;
+  // The root directory is nobody's output directory: --overwrite would remove /figures, /vtk.
+  if (std::filesystem::weakly_canonical(dir, ec) == std::filesystem::path("/")) {
+    throw InputError("--out: '" + dir + "' is the root directory; give a directory of its own");
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("--out: cannot create the directory '" + dir + "': " + ec.message());
   if (!std::filesystem::is_directory(dir, ec)) {
@@ -321,7 +325,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
 // the directory process 0 has made ready (a failure there ends them quietly: process 0 says why).
 int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
               const PathOptions& options) {
-  if (!AwaitOutputReady(a.out + "/vtk")) return kExitFailure;
+  if (const int refused = AwaitOutputReady(a.out + "/vtk"); refused != 0) return refused;
   SnapshotWriter pieces(a.out, problem, a.save_every);
   AgreedRecords agreed(nullptr);  // process 0's record writes, agreed (process_agreement.h)
   ObserverTee observers({&agreed, &pieces});
@@ -372,9 +376,14 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
   record->starts = {a.start_near ? "near" : ToString(a.start)};
-  return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
-    return TraceRun(a, problem, *formulation, options, target, &ready, record, reason);
-  });
+  try {
+    return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
+      return TraceRun(a, problem, *formulation, options, target, &ready, record, reason);
+    });
+  } catch (const UsageError&) {
+    ready.Refused(kExitBadArguments);  // a refused --out: status 2 on every process
+    throw;
+  }
 }
 
 namespace {

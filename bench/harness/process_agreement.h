@@ -49,13 +49,17 @@ class OutputReadyWord {
 
   // Then every process checks that it can write in `directory` (OnEveryProcess).
   void Ready(const std::string& directory);
+  // The word that process 0 refused the run with exit `status` (a bad --out: 2), so that
+  // every process ends with the status process 0 ends with; the destructor's word is 3.
+  void Refused(int status);
 
  private:
   bool given_ = false;
 };
 
-// The other processes' side: waits for process 0's word, false when it failed (process 0 says
-// why); then checks, with every process, that this one can write in `directory`.
-bool AwaitOutputReady(const std::string& directory);
+// The other processes' side: waits for process 0's word; 0 when the directory is ready (then
+// checks, with every process, that this one can write in `directory`), else the exit status
+// process 0 ends with (it says why).
+int AwaitOutputReady(const std::string& directory);
 
 }  // namespace cb::harness
