@@ -31,6 +31,12 @@ def main(argv):
     except (FileNotFoundError, ValueError) as e:
         print(f"plot_run.py: {e}", file=sys.stderr)
         return 2
+    except (OSError, KeyError, TypeError, IndexError) as e:
+        # Records the figures do not expect (a file edited by hand, a column missing): a
+        # sentence naming the directory, not a traceback.
+        print(f"plot_run.py: {args.out_dir}: cannot plot these records ({type(e).__name__}: {e})",
+              file=sys.stderr)
+        return 3
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return 0

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "model/truss.h"
 #include "problems/problem.h"
@@ -115,6 +116,32 @@ TEST(ProblemsTest, BadParameterIsNamed) {
   EXPECT_THROW(MakeProblem("arch-flat", {{"length_scale", "0"}}), std::invalid_argument);
   EXPECT_THROW(MakeProblem("arch-flat", {{"lower_obstacle", "round"}}), std::invalid_argument);
   EXPECT_THROW(MakeProblem("arch-flat", {{"youngs_modulus", "nan"}}), std::invalid_argument);
+}
+
+// The message of a refused value, for the assertions below.
+std::string RefusalOf(const std::string& problem, const std::string& name,
+                      const std::string& text) {
+  try {
+    MakeProblem(problem, {{name, text}});
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(ProblemsTest, AnIntegerParameterIsWrittenAsDigits) {
+  EXPECT_EQ(MakeProblem("block", {{"n", "4"}}).model->num_dofs(), 2 * 5 * 5);
+  for (const char* text : {"1e1", "4.0", "4e0", "0x4", "", "-"}) {
+    EXPECT_NE(RefusalOf("block", "n", text).find("parameter 'n'"), std::string::npos) << text;
+  }
+}
+
+TEST(ProblemsTest, AValueOutOfRangeNamesTheBoundItPassesExactly) {
+  // poisson_ratio is in (-1, 0.4999999]: 0.5 passes the upper bound, printed as it is.
+  const std::string above = RefusalOf("block", "poisson_ratio", "0.5");
+  EXPECT_NE(above.find("must be at most 0.4999999"), std::string::npos) << above;
+  const std::string below = RefusalOf("block", "poisson_ratio", "-1");
+  EXPECT_NE(below.find("must be above -1"), std::string::npos) << below;
 }
 
 TEST(ProblemsTest, ReconstructionChoicesAreParameters) {

@@ -133,5 +133,59 @@ TEST(SolidIoTest, InlineHexahedronAndCylinderRoundTrip) {
   EXPECT_THROW(io::ParseProblemFile(bad, "cube.json", "."), std::invalid_argument);
 }
 
+// The message of a refused problem file, "accepted" when it is read.
+std::string RefusalOf(const std::string& text, const std::string& directory = ".") {
+  try {
+    io::ParseProblemFile(text, "hex.json", directory);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+// A hexahedron listed twice (in any node order) doubles its stiffness silently: refused, as
+// coincident nodes of a Gmsh mesh are (issue 30).
+TEST(SolidIoTest, AHexahedronListedTwiceAndCoincidentGmshNodesAreRefused) {
+  const std::string one = R"({
+    "kind": "solid-hex8", "material": {"E": 100.0, "nu": 0.3},
+    "nodes": [{"id": 1, "x": [0, 0, 0]}, {"id": 2, "x": [1, 0, 0]}, {"id": 3, "x": [1, 1, 0]},
+              {"id": 4, "x": [0, 1, 0]}, {"id": 5, "x": [0, 0, 1]}, {"id": 6, "x": [1, 0, 1]},
+              {"id": 7, "x": [1, 1, 1]}, {"id": 8, "x": [0, 1, 1]}],
+    "elements": [{"nodes": [1, 2, 3, 4, 5, 6, 7, 8]}],
+    "supports": [{"node": 1, "fixed": ["x", "y", "z"]}, {"node": 2, "fixed": ["y", "z"]},
+                 {"node": 4, "fixed": ["x", "z"]}, {"node": 3, "fixed": ["z"]}],
+    "loads": [{"node": 7, "force": [0, 0, -1]}],
+    "length_scale": 0.1, "force_scale": 1.0, "analysis": "fixed-load", "load": 1.0})";
+  ASSERT_EQ(RefusalOf(one), "accepted");
+  std::string twice = one;
+  const std::string element = "[1, 2, 3, 4, 5, 6, 7, 8]}]";
+  twice.replace(twice.find(element), element.size(),
+                "[1, 2, 3, 4, 5, 6, 7, 8]}, {\"nodes\": [2, 3, 4, 1, 6, 7, 8, 5]}]");
+  const std::string refusal = RefusalOf(twice);
+  EXPECT_NE(refusal.find("/elements/1/nodes: the same eight nodes as /elements/0"),
+            std::string::npos)
+      << refusal;
+
+  // hex-block.msh with its second node moved onto its first.
+  std::string mesh = ReadAll(kData / "hex-block.msh");
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_solid_io_coincident";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const io::GmshMesh g = io::ReadGmsh((kData / "hex-block.msh").string());
+  std::ostringstream first, second;
+  first.precision(17);
+  second.precision(17);
+  first << g.coordinates(0, 0) << " " << g.coordinates(0, 1) << " " << g.coordinates(0, 2);
+  second << g.coordinates(1, 0) << " " << g.coordinates(1, 1) << " " << g.coordinates(1, 2);
+  const auto at = mesh.find("\n" + second.str() + "\n");
+  ASSERT_NE(at, std::string::npos) << "the mesh writes coordinates as " << second.str();
+  mesh.replace(at + 1, second.str().size(), first.str());
+  std::ofstream(dir / "hex-block.msh") << mesh;
+  std::filesystem::copy_file(kData / "hex-block.json", dir / "hex-block.json");
+  const std::string coincident = RefusalOf(ReadAll(dir / "hex-block.json"), dir.string());
+  EXPECT_NE(coincident.find("at the same place as node"), std::string::npos) << coincident;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cb

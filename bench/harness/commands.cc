@@ -67,17 +67,20 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
 
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;
+  // The root directory is nobody's output directory: --overwrite would remove /figures, /vtk.
+  if (std::filesystem::weakly_canonical(dir, ec) == std::filesystem::path("/")) {
+    throw InputError("--out: '" + dir + "' is the root directory; give a directory of its own");
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("--out: cannot create the directory '" + dir + "': " + ec.message());
   if (!std::filesystem::is_directory(dir, ec)) {
     throw InputError("--out: '" + dir + "' exists and is not a directory");
   }
-  const std::string probe = dir + "/.contactbench_write_test";
-  {
-    std::ofstream f(probe);
-    if (!f) throw InputError("--out: the directory '" + dir + "' is not writable");
+  try {
+    ProbeWritable(dir + "/.contactbench_write_test");
+  } catch (const WriteError& e) {
+    throw InputError("--out: the directory '" + dir + "' is not writable: " + e.what());
   }
-  std::filesystem::remove(probe, ec);
 }
 
 namespace {
@@ -153,8 +156,11 @@ Problem LoadProblem(const RunArguments& a) {
   const Activity building("building the problem");
   Problem problem;
   try {
-    problem = !a.problem_file.empty() ? io::LoadProblemFile(a.problem_file, a.settings)
-                                      : MakeProblem(a.problem, a.settings);
+    // --allow-memory lifts the bound on a problem file's size too (io/input_bounds.h).
+    problem = !a.problem_file.empty()
+                  ? io::LoadProblemFile(a.problem_file, a.settings,
+                                        a.allow_memory ? 0 : io::kProblemFileMaxBytes)
+                  : MakeProblem(a.problem, a.settings);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what() + SettingSuggestion(a));
   }
@@ -292,8 +298,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   // The saved states are files (VTK among them): only in an output directory.
   std::optional<SnapshotWriter> snapshots;
   if (target.memory == nullptr) snapshots.emplace(a.out, problem, a.save_every);
-  ready->Ready(a.out + "/vtk");  // the other processes of a distributed run may write there now
-  std::vector<PathObserver*> watching{&recorder};
+  ready->Ready(a.out + "/vtk");     // the other processes of a distributed run may write there now
+  AgreedRecords agreed(&recorder);  // with the other processes of a distributed run
+  std::vector<PathObserver*> watching{&agreed};
   if (snapshots) watching.push_back(&*snapshots);
   ObserverTee observers(watching);
   const PathSummary summary = [&] {
@@ -305,7 +312,9 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
     const Activity writing("writing the final state");
     // The snapshot first: in a distributed run the last step all processes take together.
     if (snapshots) snapshots->Save(summary.final_state, summary.accepted_steps, "final");
-    WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
+    OnEveryProcess("writing the final state", [&] {
+      WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
+    });
   }
   record->runs = 1;
   record->attempts = summary.attempts;
@@ -326,11 +335,14 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
 // the directory process 0 has made ready (a failure there ends them quietly: process 0 says why).
 int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
               const PathOptions& options) {
-  if (!AwaitOutputReady(a.out + "/vtk")) return kExitFailure;
+  if (const int refused = AwaitOutputReady(a.out + "/vtk"); refused != 0) return refused;
   SnapshotWriter pieces(a.out, problem, a.save_every);
-  const PathSummary summary = TraceProblem(problem, formulation, options, &pieces);
+  AgreedRecords agreed(nullptr);  // process 0's record writes, agreed (process_agreement.h)
+  ObserverTee observers({&agreed, &pieces});
+  const PathSummary summary = TraceProblem(problem, formulation, options, &observers);
   if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();  // as process 0 does
   pieces.Save(summary.final_state, summary.accepted_steps, "final");
+  OnEveryProcess("writing the final state", [] {});  // process 0 writes it
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   return summary.status == Status::kConverged ? kExitOk : kExitFailure;
 }
@@ -387,9 +399,14 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
   record->starts = {StartLabel(a)};
-  return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
-    return TraceRun(a, problem, *formulation, options, target, &ready, record, reason, guess);
-  });
+  try {
+    return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
+      return TraceRun(a, problem, *formulation, options, target, &ready, record, reason, guess);
+    });
+  } catch (const UsageError&) {
+    ready.Refused(kExitBadArguments);  // a refused --out: status 2 on every process
+    throw;
+  }
 }
 
 namespace {

@@ -338,7 +338,9 @@ std::vector<Option> MakeOptions() {
        [](O o, S v, A* a) { FormulationOption(o, v, true, a); }},
       {"--petsc-options", "OPTIONS", kPathCommands, Need::kOptional, false,
        "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
-       "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"",
+       "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"; passed to PETSc as "
+       "they are: an option naming a file (-options_file, -snes_monitor ascii:F, "
+       "-snes_view_solution binary:F) reads or writes that path, anywhere the user can",
        nullptr, [](O, S v, A* a) { a->petsc_options = v; }},
       {"--step", "N", kExport, Need::kOptional, false,
        "with --format fclib, a path's step N (traced by implicit-fb) at its load, with its "

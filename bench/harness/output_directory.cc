@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/csv.h"
+#include "core/owned_file.h"
 #include "harness/options.h"
 #include "harness/record_schemas.h"
 #include "harness/run_inputs.h"
@@ -42,10 +44,10 @@ bool StillLinked(int fd, const std::string& path) {
 
 OutputLock::OutputLock(const std::string& directory) : path_(directory + "/" + kLockFile) {
   for (;;) {
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) {
-      throw InputError("--out: cannot create the lock file '" + path_ +
-                       "': " + std::strerror(errno));
+    try {
+      fd_ = OpenOwnedLockFile(path_);  // never through a symbolic link (docs/hardening.md)
+    } catch (const WriteError& e) {
+      throw InputError("--out: the lock file: " + std::string(e.what()));
     }
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
@@ -73,8 +75,14 @@ OutputLock::~OutputLock() {
   ::close(fd_);
 }
 
+void ProbeWritable(const std::string& path) {
+  WriteOwnedFile(path, "", FileCreation::kReplace);
+  ::unlink(path.c_str());
+}
+
 std::vector<std::string> RecordsIn(const std::string& directory) {
-  std::vector<std::string> names = {"run.json", "vtk", kInputsDirectory};
+  // figures/: `plot`'s default output, which would otherwise outlive the records it drew.
+  std::vector<std::string> names = {"run.json", "vtk", kInputsDirectory, "figures"};
   for (const RecordDoc& doc : RecordDocs()) names.push_back(doc.file);
   std::vector<std::string> found;
   std::error_code ec;

@@ -23,8 +23,13 @@ class OutputLock {
   int fd_ = -1;
 };
 
+// Makes and removes the empty file `path` (a probe that the directory is writable), never
+// through a symbolic link: a link of that name is refused, a regular file left by a killed run
+// is replaced. Throws WriteError.
+void ProbeWritable(const std::string& path);
+
 // The record files and directories of a run found in DIR (run.json, every record file of
-// docs/records.md, vtk/).
+// docs/records.md, vtk/, and figures/ that `plot` writes there by default).
 std::vector<std::string> RecordsIn(const std::string& directory);
 
 // Refuses (UsageError) a directory that holds records, unless `overwrite`: then removes them.

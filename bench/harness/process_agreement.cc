@@ -8,6 +8,7 @@
 
 #include "core/csv.h"
 #include "formulations/petsc_dist/petsc_dist.h"
+#include "harness/output_directory.h"
 
 #ifdef CONTACTBENCH_HAVE_PETSC
 #include <mpi.h>
@@ -29,13 +30,16 @@ int LowestFailing(bool failed) {
   return lowest;
 }
 
-// Process 0's word: 1 ready, 0 failed (a collective).
-bool ProcessZeroSays(bool ready) {
-  int word = ready ? 1 : 0;
+// The failure word of process 0 when it does not say how it ends: exit status 3.
+constexpr int kFailedWord = 3;
+
+// Process 0's word: 0 ready, else the exit status it ends with (a collective; the others'
+// `word` is ignored).
+int ProcessZeroSays(int word) {
 #ifdef CONTACTBENCH_HAVE_PETSC
   MPI_Bcast(&word, 1, MPI_INT, 0, MPI_COMM_WORLD);
 #endif
-  return word == 1;
+  return word;
 }
 
 // A file made and removed in `directory`: the directory process 0 prepared must be the one this
@@ -43,16 +47,14 @@ bool ProcessZeroSays(bool ready) {
 void ProbeDirectory(const std::string& directory) {
   const std::string probe =
       directory + "/.contactbench_write_test_" + std::to_string(DistributedRank());
-  {
-    std::ofstream f(probe);
-    if (!f) {
-      throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
-                                  " cannot write there (is --out on a file system every "
-                                  "process shares?)");
-    }
+  try {
+    ProbeWritable(probe);
+  } catch (const WriteError& e) {
+    throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
+                                " cannot write there (is --out on a file system every "
+                                "process shares?): " +
+                                e.what());
   }
-  std::error_code ec;
-  std::filesystem::remove(probe, ec);
 }
 
 void ProbeOnEveryProcess(const std::string& directory) {
@@ -80,22 +82,46 @@ void OnEveryProcess(const std::string& what, const std::function<void()>& work) 
   }
 }
 
+void AgreedRecords::OnAttempt(const StepAttempt& attempt) {
+  OnEveryProcess("writing the records of a step", [&] {
+    if (records_ != nullptr) records_->OnAttempt(attempt);
+  });
+}
+
+void AgreedRecords::OnKink(const KinkRecord& kink) {
+  OnEveryProcess("writing the record of a kink", [&] {
+    if (records_ != nullptr) records_->OnKink(kink);
+  });
+}
+
+void AgreedRecords::OnCriticalPoint(const CriticalPointRecord& point) {
+  OnEveryProcess("writing the record of a critical point", [&] {
+    if (records_ != nullptr) records_->OnCriticalPoint(point);
+  });
+}
+
 OutputReadyWord::~OutputReadyWord() {
-  if (!given_ && Distributed()) ProcessZeroSays(false);
+  if (!given_ && Distributed()) ProcessZeroSays(kFailedWord);
 }
 
 void OutputReadyWord::Ready(const std::string& directory) {
   if (given_ || !Distributed()) return;
   given_ = true;
-  ProcessZeroSays(true);
+  ProcessZeroSays(0);
   ProbeOnEveryProcess(directory);
 }
 
-bool AwaitOutputReady(const std::string& directory) {
-  if (!Distributed()) return true;
-  if (!ProcessZeroSays(false)) return false;
+void OutputReadyWord::Refused(int status) {
+  if (given_ || !Distributed()) return;
+  given_ = true;
+  ProcessZeroSays(status == 0 ? kFailedWord : status);
+}
+
+int AwaitOutputReady(const std::string& directory) {
+  if (!Distributed()) return 0;
+  if (const int status = ProcessZeroSays(kFailedWord); status != 0) return status;
   ProbeOnEveryProcess(directory);
-  return true;
+  return 0;
 }
 
 }  // namespace cb::harness

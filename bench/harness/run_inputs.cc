@@ -4,6 +4,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/csv.h"
+#include "core/owned_file.h"
 #include "harness/options.h"
 #include "harness/sha256.h"
 #include "io/problem_file.h"
@@ -29,10 +31,12 @@ std::string ReadBytes(const fs::path& file, const std::string& role) {
 void WriteBytes(const fs::path& file, const std::string& bytes) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
-  std::ofstream out(file, std::ios::binary);
-  out << bytes;
-  out.close();
-  if (ec || !out) throw InputError("--out: cannot write the copy '" + file.string() + "'");
+  if (ec) throw InputError("--out: cannot write the copy '" + file.string() + "': " + ec.message());
+  try {
+    WriteOwnedFile(file.string(), bytes, FileCreation::kReplace);  // never through a link
+  } catch (const WriteError& e) {
+    throw InputError("--out: the copy of an input: " + std::string(e.what()));
+  }
 }
 
 // Where a mesh named `named` is copied, relative to the copies' directory: its own relative

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/blas_info.h"
+#include "core/csv.h"
+#include "core/owned_file.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/sha256.h"
@@ -130,14 +132,12 @@ bool WriteRunJson(const std::string& directory, const RunJson& run, int exit_sta
                   const std::string& reason) {
   const std::string path = directory + "/run.json";
   const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << RunJsonText(run, exit_status, reason);
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      return false;
-    }
+  try {
+    // A fresh file, never through a symbolic link; rename replaces a link named run.json
+    // rather than writing through it.
+    WriteOwnedFile(temporary, RunJsonText(run, exit_status, reason), FileCreation::kReplace);
+  } catch (const WriteError&) {
+    return false;
   }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);

@@ -1,10 +1,11 @@
 #include "harness/vtk_files.h"
 
 #include <filesystem>
-#include <fstream>
 #include <numeric>
+#include <sstream>
 
 #include "core/csv.h"
+#include "core/owned_file.h"
 
 namespace cb::harness {
 
@@ -35,23 +36,20 @@ int VtkCellType(std::size_t corners, int dim) {
   }
 }
 
-// Closes `out` (which flushes it) and checks every write; a file cut short is removed.
-void CloseOrRemove(std::ofstream& out, const std::string& path) {
-  out.close();
-  if (out) return;
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
-  throw WriteError(path, "the write failed (disk full?); the file was removed");
+// Writes the text composed in `out` as the file `path`, never through a symbolic link
+// (core/owned_file.h); a file cut short is removed.
+void WriteWhole(const std::ostringstream& out, const std::string& path) {
+  WriteOwnedFile(path, out.str(), FileCreation::kReplace);
 }
 
-std::ofstream Open(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw WriteError(path, "cannot open it");
+// The text of one file, composed in memory and written whole by WriteWhole.
+std::ostringstream Open() {
+  std::ostringstream out;
   out.precision(17);
   return out;
 }
 
-void WriteConnectivity(std::ofstream& out, const std::vector<std::vector<int>>& cells) {
+void WriteConnectivity(std::ostringstream& out, const std::vector<std::vector<int>>& cells) {
   out << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n         ";
   for (const auto& cell : cells) {
     for (int n : cell) out << ' ' << n;
@@ -102,7 +100,7 @@ struct GridSelection {
   const BodyPiece* piece;
 };
 
-void WriteIndices(std::ofstream& out, const char* name, const std::vector<int>& indices) {
+void WriteIndices(std::ostringstream& out, const char* name, const std::vector<int>& indices) {
   out << "        <DataArray type=\"Int64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
   for (int i : indices) out << ' ' << i;
   out << "\n        </DataArray>\n";
@@ -131,7 +129,7 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
   std::vector<double> reaction(body.num_nodes(), 0.0);
   for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
 
-  std::ofstream out = Open(path);
+  std::ostringstream out = Open();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <UnstructuredGrid>\n"
@@ -189,7 +187,7 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
   }
   if (!whole) WriteIndices(out, "global_cell", grid.cells);
   out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  CloseOrRemove(out, path);
+  WriteWhole(out, path);
 }
 
 }  // namespace
@@ -210,7 +208,7 @@ void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const St
 
 void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
                    const std::vector<std::string>& pieces) {
-  std::ofstream out = Open(path);
+  std::ostringstream out = Open();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
@@ -235,12 +233,12 @@ void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell
     out << "    <Piece Source=\"" << XmlEscaped(piece) << "\"/>\n";
   }
   out << "  </PUnstructuredGrid>\n</VTKFile>\n";
-  CloseOrRemove(out, path);
+  WriteWhole(out, path);
 }
 
 void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
                      const std::string& id) {
-  std::ofstream out = Open(path);
+  std::ostringstream out = Open();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PolyData>\n"
@@ -270,13 +268,13 @@ void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
     out << "      </Polys>\n";
   }
   out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  CloseOrRemove(out, path);
+  WriteWhole(out, path);
 }
 
 void WritePvd(const std::string& path, const std::vector<PvdDataSet>& datasets) {
   const std::string temporary = path + ".tmp";
   {
-    std::ofstream out = Open(temporary);
+    std::ostringstream out = Open();
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
@@ -287,7 +285,7 @@ void WritePvd(const std::string& path, const std::vector<PvdDataSet>& datasets) 
       out << '\n';
     }
     out << "  </Collection>\n</VTKFile>\n";
-    CloseOrRemove(out, temporary);
+    WriteWhole(out, temporary);
   }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);  // atomic: never a half-written collection

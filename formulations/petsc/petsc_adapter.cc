@@ -12,6 +12,7 @@
 
 #include "core/timer.h"
 #include "formulations/petsc/petsc.h"
+#include "formulations/petsc/petsc_unused_options.h"
 
 namespace cb {
 
@@ -345,7 +346,9 @@ struct SnesVi::Objects {
 };
 
 SnesVi::SnesVi(const std::string& snes_type, const std::string& user_options)
-    : options_(PetscViOptions(snes_type, user_options)), objects_(std::make_unique<Objects>()) {
+    : options_(PetscViOptions(snes_type, user_options)),
+      user_options_(user_options),
+      objects_(std::make_unique<Objects>()) {
   StartPetsc();
   PetscErrorCapture capture;
   const std::string prefix = OptionsPrefixFor("cb", options_);
@@ -413,6 +416,14 @@ void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const Solv
   const PetscErrorCode code = solve();
   o.run = nullptr;
   if (run.error) std::rethrow_exception(run.error);
+  // After the first solve that iterated (a factorisation's options are read when it first
+  // factors), PETSc has read what it will read (petsc_unused_options.h).
+  PetscInt iterations = 0;
+  if (!options_checked_ && code == 0 && SNESGetIterationNumber(o.snes, &iterations) == 0 &&
+      iterations > 0) {
+    options_checked_ = true;
+    RefuseUnusedPetscOptions(OptionsPrefixFor("cb", options_), user_options_);
+  }
   CopyIn(o.x, x);
 
   RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI",

@@ -124,6 +124,8 @@ class SnesVi {
  private:
   struct Objects;
   std::string options_;
+  std::string user_options_;  // checked for options PETSc never read after the first solve
+  bool options_checked_ = false;
   std::unique_ptr<Objects> objects_;
 };
 

@@ -33,7 +33,14 @@ CRITICAL_MARKER = {"limit": ("v", "tab:red"), "bifurcation": ("D", "tab:purple")
 
 
 def _read_csv(path):
-    return pd.read_csv(path) if os.path.exists(path) and os.path.getsize(path) > 0 else None
+    """The record file at `path` (None when missing or empty); ValueError naming the file when
+    it is not a CSV file pandas can read."""
+    if not os.path.exists(path) or os.path.getsize(path) == 0:
+        return None
+    try:
+        return pd.read_csv(path)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
+        raise ValueError(f"{path}: not a readable record file ({e})") from None
 
 
 def read_run(run_dir):
@@ -45,7 +52,19 @@ def read_run(run_dir):
     if records["steps"] is None:
         raise ValueError(f"{run_dir}: no steps.csv; not the --out directory of a run or compare")
     run_json = os.path.join(run_dir, "run.json")
-    records["run"] = json.load(open(run_json)) if os.path.exists(run_json) else {}
+    try:
+        with open(run_json) as f:
+            records["run"] = json.load(f)
+    except FileNotFoundError:
+        records["run"] = {}
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise ValueError(f"{run_json}: not a readable run.json ({e})") from None
+    if not isinstance(records["run"], dict):
+        raise ValueError(f"{run_json}: not a run.json (not a JSON object)")
+    if len(records["steps"]) == 0:
+        reason = records["run"].get("reason", "")
+        raise ValueError(f"{run_dir}: the run stopped before its first step; nothing to plot"
+                         + (f" (run.json: {reason})" if reason else ""))
     records["dir"] = run_dir
     return records
 
@@ -62,6 +81,9 @@ def _groups(steps):
 
 
 def _save(fig, path):
+    if os.path.islink(path):  # never written through, as the suite's own files (owned_file.h)
+        plt.close(fig)
+        raise ValueError(f"{path}: a symbolic link; plot does not write through one")
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
     return path
@@ -194,12 +216,16 @@ def hardest_step(records):
     return int(steps.loc[steps["iterations"].idxmax(), "step"])
 
 
-def plot_residual(records, path, step):
-    """norm_inf(F) of each iteration of every attempt of `step` (per formulation x start)."""
+def plot_residual(records, path, step, chosen=True):
+    """norm_inf(F) of each iteration of every attempt of `step` (per formulation x start). A
+    step not `chosen` by the user (the default) without iterations (a run that stopped while
+    writing them) draws nothing."""
     iterations = records["iterations"]
     if iterations is None:
         return None
     rows = iterations[iterations["step"] == step]
+    if not len(rows) and not chosen:
+        return None
     if not len(rows):
         raise ValueError(f"step {step} has no iteration in iterations.csv "
                          f"(steps {iterations['step'].min()}-{iterations['step'].max()})")
@@ -222,13 +248,16 @@ def plot_residual(records, path, step):
 def write(run_dir, figures_dir, step=None):
     """Every figure that the directory's records allow; returns the paths written."""
     records = read_run(run_dir)
+    if os.path.exists(figures_dir) and not os.path.isdir(figures_dir):
+        raise ValueError(f"--figures: '{figures_dir}' exists and is not a directory")
     os.makedirs(figures_dir, exist_ok=True)
     out = os.path.join
     written = [plot_path(records, out(figures_dir, "path.png")),
                plot_deformed(records, out(figures_dir, "deformed.png")),
                plot_cost(records, out(figures_dir, "cost.png")),
                plot_residual(records, out(figures_dir, "residual.png"),
-                             hardest_step(records) if step is None else step)]
+                             hardest_step(records) if step is None else step,
+                             chosen=step is not None)]
     runs = records["runs"]
     if is_comparison(records) and runs is not None:
         steps = records["steps"]

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/owned_file.h"
+
 namespace cb {
 
 std::string FormatDouble(double value) {
@@ -49,8 +51,7 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, 
   if (memory_ != nullptr) {
     memory_->clear();  // as O_TRUNC empties a file
   } else {
-    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw std::runtime_error("cannot open '" + path + "' for writing");
+    fd_ = OpenOwnedFile(path, FileCreation::kReplace);  // never through a symbolic link
   }
   Row header;
   for (const auto& c : columns_) header << c;

@@ -29,7 +29,8 @@ std::string KindOf(std::filesystem::file_type type) {
 
 }  // namespace
 
-std::string ReadInputFile(const std::string& path, const std::string& what) {
+std::string ReadInputFile(const std::string& path, const std::string& what,
+                          std::uintmax_t max_bytes, const std::string& lifted_by) {
   std::error_code ec;
   const std::filesystem::file_type type = std::filesystem::status(path, ec).type();
   if (type == std::filesystem::file_type::not_found) {
@@ -37,6 +38,13 @@ std::string ReadInputFile(const std::string& path, const std::string& what) {
   }
   if (!ec && type != std::filesystem::file_type::regular) {
     throw InputError(path, "", "is " + KindOf(type) + ", not a " + what);
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (max_bytes > 0 && !ec && size > max_bytes) {
+    throw InputError(path, "",
+                     "the " + what + " is " + std::to_string(size) + " bytes, more than the " +
+                         std::to_string(max_bytes) + " bytes a " + what + " may have" +
+                         (lifted_by.empty() ? "" : " without " + lifted_by));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the " + what);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/csv.h"
+#include "io/input_bounds.h"
 
 namespace cb::io {
 
@@ -90,6 +91,7 @@ class PointerTracker final : public nlohmann::json_sax<Json> {
 }  // namespace
 
 Json ParseJson(const std::string& text, const std::string& file) {
+  CheckJsonDepth(text, file, kJsonMaxDepth);  // before the parser's work grows with it
   try {
     return Json::parse(text);
   } catch (const Json::parse_error& e) {

@@ -12,15 +12,18 @@
 #include <string>
 #include <vector>
 
+#include "io/input_bounds.h"
 #include "problems/problem.h"
 
 namespace cb::io {
 
 // Reads the problem file at `path`. `settings` overrides the file's run parameters by name, as
 // `--set` does for named problems: length_scale, force_scale, and load (fixed-load) or
-// arc_length and steps (arc-length). A mesh file is found relative to `path`'s directory.
+// arc_length and steps (arc-length). A mesh file is found relative to `path`'s directory. A
+// file larger than `max_bytes` (input_bounds.h; 0: no bound) is refused before it is read.
 Problem LoadProblemFile(const std::string& path,
-                        const std::map<std::string, std::string>& settings = {});
+                        const std::map<std::string, std::string>& settings = {},
+                        std::uintmax_t max_bytes = kProblemFileMaxBytes);
 
 // The same from the file's contents: `file` names it in messages and `directory` is where a
 // referenced mesh file is looked up.

@@ -129,6 +129,22 @@ std::optional<std::pair<int, int>> CoincidentNodes(const Mat& xy) {
   return std::nullopt;
 }
 
+// The first element that has the same nodes as an earlier one, with that earlier one, or
+// nothing: a hexahedron listed twice doubles its stiffness with no word from the model (and
+// makes its faces interior, so a traction on them is refused for another reason).
+template <typename Element>
+std::optional<std::pair<std::size_t, std::size_t>> DuplicateElement(
+    const std::vector<Element>& elements) {
+  std::map<Element, std::size_t> first;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    Element sorted = elements[k];
+    std::sort(sorted.begin(), sorted.end());
+    const auto [it, added] = first.emplace(sorted, k);
+    if (!added) return std::make_pair(it->second, k);
+  }
+  return std::nullopt;
+}
+
 NodeTable ReadNodes(const JsonNode& nodes, int dim) {
   NodeTable t;
   const auto items = nodes.Items();
@@ -760,6 +776,10 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
                        "no 8-node hexahedra (element type 5) in the mesh: make them with "
                        "transfinite, recombined volumes and write with gmsh -3 -format msh41");
     }
+    if (const auto pair = CoincidentNodes(in.nodes.coordinates)) {
+      throw InputError(in.mesh_file, "node " + std::to_string(in.nodes.ids[pair->second]),
+                       "at the same place as node " + std::to_string(in.nodes.ids[pair->first]));
+    }
     for (std::size_t k = 0; k < g.hexes.size(); ++k) {
       SolidHex8::Element e;
       for (int i = 0; i < 8; ++i) e[i] = in.nodes.index.at(g.hexes[k][i]);
@@ -767,6 +787,11 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
         throw InputError(in.mesh_file, "element " + std::to_string(g.hex_tags[k]), kOrder);
       }
       elements.push_back(e);
+    }
+    if (const auto pair = DuplicateElement(elements)) {
+      throw InputError(
+          in.mesh_file, "element " + std::to_string(g.hex_tags[pair->second]),
+          "the same eight nodes as element " + std::to_string(g.hex_tags[pair->first]));
     }
   } else {
     in.nodes = ReadNodes(root.Field("nodes"), 3);
@@ -787,6 +812,11 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
       }
       if (!SolidHex8::HasPositiveJacobian(in.nodes.coordinates, e)) ids.Fail(kOrder);
       elements.push_back(e);
+    }
+    if (const auto pair = DuplicateElement(elements)) {
+      list.At(pair->second)
+          .Field("nodes")
+          .Fail("the same eight nodes as /elements/" + std::to_string(pair->first));
     }
   }
   std::vector<int> uses(in.nodes.ids.size(), 0);
@@ -971,10 +1001,10 @@ Problem ParseProblemFile(const std::string& text, const std::string& file,
   return problem;
 }
 
-Problem LoadProblemFile(const std::string& path,
-                        const std::map<std::string, std::string>& settings) {
+Problem LoadProblemFile(const std::string& path, const std::map<std::string, std::string>& settings,
+                        std::uintmax_t max_bytes) {
   if (IsFclibPath(path)) return LoadFclibFile(path, settings);
-  const std::string text = ReadInputFile(path, "problem file");
+  const std::string text = ReadInputFile(path, "problem file", max_bytes, "--allow-memory");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return ParseProblemFile(text, path, directory.empty() ? "." : directory, settings);
 }

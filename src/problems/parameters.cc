@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/csv.h"
@@ -16,6 +15,27 @@ bool ParseDouble(const std::string& text, double* value) {
   const char* last = text.data() + text.size();
   auto [end, ec] = std::from_chars(first, last, *value);
   return ec == std::errc() && end == last && !text.empty();
+}
+
+// An integer written as digits, with an optional minus sign: "1e3" and "8.0" read as numbers but
+// are refused as integers, as everywhere else on the command line.
+bool IsIntegerText(const std::string& text) {
+  const std::size_t first = !text.empty() && text[0] == '-' ? 1 : 0;
+  if (first == text.size()) return false;
+  for (std::size_t i = first; i < text.size(); ++i) {
+    if (text[i] < '0' || text[i] > '9') return false;
+  }
+  return true;
+}
+
+// Why `v` is refused: which bound it passes, each printed exactly (a bound of 0.4999999 shown
+// as 0.5 would contradict the value), and what the parameter is.
+std::string OutOfRange(const std::string& text, bool below, double bound, bool exclusive,
+                       const std::string& doc) {
+  const std::string side =
+      below ? (exclusive ? "must be above " : "must be at least ") : "must be at most ";
+  return text + " is out of range: it " + side + FormatDouble(bound) +
+         (doc.empty() ? "" : " (" + doc + ")");
 }
 
 }  // namespace
@@ -87,14 +107,14 @@ void Parameters::Set(const std::string& name, const std::string& text) {
   if (!ParseDouble(text, &v))
     throw std::invalid_argument(where + ": '" + text + "' is not a number");
   if (!std::isfinite(v)) throw std::invalid_argument(where + ": must be finite");
-  if (e.kind == Kind::kInteger && v != std::floor(v)) {
+  if (e.kind == Kind::kInteger && (v != std::floor(v) || !IsIntegerText(text))) {
     throw std::invalid_argument(where + ": '" + text + "' is not an integer");
   }
   const bool below = e.exclusive_min ? !(v > e.min) : !(v >= e.min);
   if (below || v > e.max) {
-    std::ostringstream range;
-    range << (e.exclusive_min ? "(" : "[") << e.min << ", " << e.max << "]";
-    throw std::invalid_argument(where + ": " + text + " is outside " + range.str());
+    throw std::invalid_argument(
+        where + ": " +
+        OutOfRange(text, below, below ? e.min : e.max, below && e.exclusive_min, e.doc));
   }
   e.value = e.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v)) : FormatDouble(v);
 }
