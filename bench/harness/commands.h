@@ -9,8 +9,10 @@
 #include <map>
 #include <string>
 
+#include "formulations/common/config.h"
 #include "harness/options.h"
 #include "harness/run_json.h"
+#include "path/path.h"
 #include "problems/problem.h"
 
 namespace cb::harness {
@@ -30,6 +32,12 @@ bool AcceptsProblem(const RunArguments& a, std::string* reason);
 // The problem of --problem NAME or --problem-file F, with --set applied. Bad input (an unknown
 // name, a bad setting, an invalid problem file, too large for the memory) is an InputError.
 Problem LoadProblem(const RunArguments& a);
+
+// The configuration of formulation `name`: the common settings plus its own --option values.
+FormulationConfig ConfigFor(const RunArguments& a, const std::string& name);
+
+// The library's path options for the problem (problem_path.h), changed by the options given.
+PathOptions MakePathOptions(const RunArguments& a, const Problem& problem);
 
 // Refuses an output directory that cannot be written before any work starts: created if
 // missing, then probed with a file (permissions alone do not tell: root, read-only mounts).
