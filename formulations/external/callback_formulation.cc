@@ -30,8 +30,8 @@ void CallbackFormulation::DoSolve(const StepProblem& step, const StartPoint& sta
     answer = {call.x0, Status::kFailed, std::string("the method raised: ") + e.what(), {}, {}};
   }
   if (answer.x.size() != system.size()) {
-    answer.message = "the method returned " + std::to_string(answer.x.size()) +
-                     " unknowns, not " + std::to_string(system.size());
+    answer.message = "the method returned " + std::to_string(answer.x.size()) + " unknowns, not " +
+                     std::to_string(system.size());
     answer.x = call.x0;
     answer.status = Status::kFailed;
   }
@@ -45,7 +45,7 @@ void CallbackFormulation::DoSolve(const StepProblem& step, const StartPoint& sta
 FormulationInfo ExternalFormulationInfo(const std::string& name, const std::string& description,
                                         const std::string& solver, ExternalMethod method) {
   const std::string shown = solver.empty() ? "external" : solver;
-  auto make = [name, shown, method](const FormulationConfig& config) {
+  auto make = [name, shown, method = std::move(method)](const FormulationConfig& config) {
     return std::unique_ptr<Formulation>(
         std::make_unique<CallbackFormulation>(name, shown, method, config.options));
   };

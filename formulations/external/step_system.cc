@@ -4,8 +4,7 @@
 
 namespace cb {
 
-ExternalStepSystem::ExternalStepSystem(const StepProblem& step)
-    : step_(step), equations_(step) {
+ExternalStepSystem::ExternalStepSystem(const StepProblem& step) : step_(step), equations_(step) {
   const StepEquationLayout& l = equations_.layout();
   const int kink = step.constraint.kind == ConstraintKind::kKink ? step.constraint.index : -1;
   constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -37,6 +36,7 @@ SpMat ExternalStepSystem::Jacobian(const Vec& x) {
   equations_.Jacobian(x, &all);
   // The kept rows as a selection matrix: F's Jacobian is P J.
   std::vector<Triplet> selection;
+  selection.reserve(rows_.size());
   for (int i = 0; i < rows(); ++i) selection.emplace_back(i, rows_[i], 1.0);
   SpMat p(rows(), size());
   p.setFromTriplets(selection.begin(), selection.end());
