@@ -18,6 +18,7 @@
 #include "harness/memory_budget.h"
 #include "harness/options.h"
 #include "harness/plot_command.h"
+#include "harness/plugins.h"
 #include "harness/records_doc.h"
 #include "harness/rerun.h"
 #include "harness/run_json.h"
@@ -177,8 +178,9 @@ int Main(int argc, char** argv) {
       throw UsageError("unknown command '" + args[0] + "'" + DidYouMean(args[0], CommandNames()) +
                        " (valid: " + Join(CommandNames()) + ")");
     }
-    const RunArguments a =
-        ParseArguments(command->command, std::vector<std::string>(args.begin() + 1, args.end()));
+    const std::vector<std::string> options(args.begin() + 1, args.end());
+    for (const auto& plugin : PluginPaths(options)) LoadPlugin(plugin);  // before the parser
+    const RunArguments a = ParseArguments(command->command, options);
     if (a.help) {
       std::cout << CommandHelp(*command);
       return kExitOk;
