@@ -57,6 +57,6 @@ function(contactbench_add_python_module)
     add_test(NAME python.module
       COMMAND ${Python_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/python_module/run_pytest.py)
     set_tests_properties(python.module PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77 ENVIRONMENT
-      "PYTHONPATH=${PROJECT_BINARY_DIR}/python;CONTACTBENCH_BINARY=$<TARGET_FILE:contactbench>")
+      "PYTHONPATH=${PROJECT_BINARY_DIR}/python;CONTACTBENCH_BINARY=$<TARGET_FILE:contactbench>;CONTACTBENCH_PLUGIN=${PROJECT_BINARY_DIR}/examples/plugin/libmin_newton.so")
   endif()
 endfunction()

@@ -18,6 +18,7 @@
 #include "formulations/registry.h"
 #include "harness/options.h"
 #include "harness/path_step.h"
+#include "harness/plugins.h"
 #include "verdict/verdict.h"
 
 namespace py = pybind11;
@@ -81,8 +82,10 @@ void BindStepSystem(py::module_& m) {
                              })
       .def_property_readonly("pair_gaps", &ExternalStepSystem::pair_gaps)
       .def_property_readonly("pair_reactions", &ExternalStepSystem::pair_reactions)
-      .def_property_readonly("lower", [](const ExternalStepSystem& s) { return ToArray(s.lower()); })
-      .def_property_readonly("upper", [](const ExternalStepSystem& s) { return ToArray(s.upper()); })
+      .def_property_readonly("lower",
+                             [](const ExternalStepSystem& s) { return ToArray(s.lower()); })
+      .def_property_readonly("upper",
+                             [](const ExternalStepSystem& s) { return ToArray(s.upper()); })
       .def(
           "residual",
           [](ExternalStepSystem& s, const Array& x) {
@@ -115,9 +118,8 @@ void BindPathStep(py::module_& m) {
                              [](const PathStep& p) { return ToArray(p.system->Start(p.warm)); })
       .def_property_readonly("cold_start",
                              [](const PathStep& p) { return ToArray(p.system->Start(p.cold)); })
-      .def_property_readonly("traced", [](const PathStep& p) {
-        return ToArray(p.system->FromPoint(p.traced));
-      });
+      .def_property_readonly(
+          "traced", [](const PathStep& p) { return ToArray(p.system->FromPoint(p.traced)); });
   m.def(
       "step",
       [](const std::vector<std::string>& args, int k) {
@@ -174,10 +176,11 @@ void BindSteps(py::module_& m) {
       "register_formulation",
       [](const std::string& name, const std::string& description, const std::string& solver,
          const py::object& adapter) {
-        RegisterFormulation(ExternalFormulationInfo(name, description, solver,
-                                                    PythonMethod(adapter)));
+        RegisterFormulation(
+            ExternalFormulationInfo(name, description, solver, PythonMethod(adapter)));
       },
       py::arg("name"), py::arg("description"), py::arg("solver"), py::arg("adapter"));
+  m.def("load_plugin", &LoadPlugin, py::arg("path"), "a C++ plug-in's formulations (--plugin)");
 }
 
 }  // namespace cb::harness

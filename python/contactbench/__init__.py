@@ -22,7 +22,7 @@ from . import _core
 __all__ = ["catalogue", "problems", "parameters", "formulations", "solvers",
            "linear_solvers", "accepts", "run", "compare", "Result", "Interrupted",
            "UsageError", "EXIT_OK", "EXIT_FAILURE", "EXIT_INTERRUPTED", "step", "judge",
-           "register", "Step", "StepSystem"]
+           "register", "load_plugin", "Step", "StepSystem"]
 
 UsageError = _core.UsageError
 EXIT_OK = _core.EXIT_OK
@@ -178,4 +178,4 @@ def compare(problem=None, formulations=None, **options):
 
 
 # The step as data and your own method (method.py): imported last, it uses _arguments.
-from .method import Step, StepSystem, judge, register, step  # noqa: E402
+from .method import Step, StepSystem, judge, load_plugin, register, step  # noqa: E402

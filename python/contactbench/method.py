@@ -13,7 +13,7 @@ import scipy.sparse as sp
 
 from . import _core
 
-__all__ = ["StepSystem", "Step", "step", "judge", "register"]
+__all__ = ["StepSystem", "Step", "step", "judge", "register", "load_plugin"]
 
 
 class StepSystem:
@@ -109,3 +109,9 @@ def register(name, method, description="", solver="", takes_start=False):
         out = method(system, x0, start, options) if takes_start else method(system, x0)
         return _answer(out, system)
     _core.register_formulation(name, description or f"Python: {name}", solver, adapter)
+
+
+def load_plugin(path):
+    """Registers a C++ plug-in's formulations, as `--plugin FILE` does; UsageError (exit 2 on the
+    command line) when it cannot be loaded, has no entry point or registers a taken name."""
+    _core.load_plugin(str(path))

@@ -114,3 +114,13 @@ def test_the_example_prints_the_table_and_writes_the_profile(tmp_path):
     assert "my-newton" in done.stdout and "implicit-fb" in done.stdout
     assert os.path.getsize(tmp_path / "figures" / "profile.png") > 0
     assert sorted(os.listdir(tmp_path)) == ["figures"]  # nothing else written
+
+
+@pytest.mark.skipif(not os.path.exists(os.environ.get("CONTACTBENCH_PLUGIN", "")),
+                    reason="examples/plugin is not built (archives without -fPIC)")
+def test_a_cpp_plugin_loads_once_and_compares_like_a_built_in_one():
+    cb.load_plugin(os.environ["CONTACTBENCH_PLUGIN"])
+    with pytest.raises(cb.UsageError, match="already registered"):
+        cb.load_plugin(os.environ["CONTACTBENCH_PLUGIN"])
+    result = cb.compare(problem="arch-flat", formulations=["min-newton"], starts="warm", steps=3)
+    assert result.status == cb.EXIT_OK and result.steps["verified"].all()
