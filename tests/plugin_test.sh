@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # ctest's cli.plugin: `--plugin FILE` (bench/harness/plugins.h) with examples/plugin's
-# min-newton: listed, compared beside a built-in formulation and verified by the verdict;
+# min-newton: listed, compared beside a built-in formulation and verified by the verdict, rerun;
 # refused with exit status 2 and the reason when loaded twice, missing, or without the entry
 # point.
 # Usage: tests/plugin_test.sh CONTACTBENCH LIBMIN_NEWTON
@@ -22,6 +22,10 @@ grep -q "min-newton" "$tmp/list" || fail "list does not show min-newton"
   --starts warm --steps 4 --out "$tmp/cmp" 2>"$tmp/err" || fail "compare --plugin failed"
 grep -q "^arch-flat,min-newton,eigen-sparselu,.*,converged," "$tmp/cmp/runs.csv" ||
   fail "min-newton did not verify every step: $(cat "$tmp/cmp/runs.csv")"
+
+"$driver" rerun "$tmp/cmp" --out "$tmp/again" 2>"$tmp/err" || fail "rerun of a --plugin compare failed"
+cmp -s <(cut -d, -f1-5 "$tmp/cmp/runs.csv") <(cut -d, -f1-5 "$tmp/again/runs.csv") ||
+  fail "the rerun's runs.csv differs"
 
 refused() {  # refused REASON ARGS...: exit status 2 and REASON on standard error
   local reason="$1"

@@ -113,6 +113,7 @@ int Rerun(const RunArguments& a) {
     std::fprintf(stderr, "rerun: --force: rerunning although%s\n", listed.c_str());
   }
   const CommandInfo* command = FindCommand(plan.command);
+  for (const auto& plugin : PluginPaths(plan.arguments)) LoadPlugin(plugin);  // as Main does
   const RunArguments arguments = ParseArguments(command->command, plan.arguments);
   RunJson record;
   record.command_line = {RunningBinary(), plan.command};
