@@ -1,6 +1,7 @@
 #include "formulations/registry.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "core/library_versions.h"
 #include "formulations/implicit_fb/implicit_fb.h"
@@ -13,9 +14,12 @@
 
 namespace cb {
 
-const std::vector<FormulationInfo>& FormulationRegistry() {
+namespace {
+
+// The registry itself: the built-in formulations, then those registered at run time.
+std::vector<FormulationInfo>& MutableRegistry() {
   // One line per formulation: name, description, whether its backend was built, factory.
-  static const std::vector<FormulationInfo> registry = {
+  static std::vector<FormulationInfo> registry = {
       {"implicit-fb",
        "implicit smoothed Fischer-Burmeister equations (29)-(33), rho an unknown; eta cases 1-4",
        true, MakeImplicitFb},
@@ -55,6 +59,33 @@ const std::vector<FormulationInfo>& FormulationRegistry() {
        DistAvailable(), MakeDistPetscSsls},
   };
   return registry;
+}
+
+bool IsFormulationName(const std::string& name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (!letter && c != '-' && c != '_' && c != '.') return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::vector<FormulationInfo>& FormulationRegistry() { return MutableRegistry(); }
+
+void RegisterFormulation(FormulationInfo info) {
+  if (!IsFormulationName(info.name)) {
+    throw std::invalid_argument("formulation name '" + info.name +
+                                "': letters, digits, '-', '_' and '.' only, not empty");
+  }
+  for (const auto& known : FormulationRegistry()) {
+    if (known.name == info.name) {
+      throw std::invalid_argument("formulation '" + info.name + "' is already registered");
+    }
+  }
+  if (!info.make) throw std::invalid_argument("formulation '" + info.name + "': no factory");
+  MutableRegistry().push_back(std::move(info));
 }
 
 std::vector<LinkedLibrary> LinkedLibraries() {

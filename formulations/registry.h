@@ -1,6 +1,7 @@
 // Names -> formulations, for the harness and the benchmarks.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,11 +15,20 @@ struct FormulationInfo {
   std::string name;
   std::string description;
   bool available = true;  // its dependency was built
-  std::unique_ptr<Formulation> (*make)(const FormulationConfig&) = nullptr;
+  std::function<std::unique_ptr<Formulation>(const FormulationConfig&)> make;
 };
 
-// In a fixed order: implicit-fb first.
+// In a fixed order: implicit-fb first, the built-in ones, then those registered at run time in
+// the order of registration.
 const std::vector<FormulationInfo>& FormulationRegistry();
+
+// Adds a formulation made outside the suite's tree (a Python callable, docs/your-own-method.md)
+// to the registry, after the built-in ones: from then on it is named, listed, made and run like
+// them. Throws std::invalid_argument for an empty name, a name with characters other than
+// letters, digits, '-', '_' and '.', a name already registered, or no factory. Not thread-safe:
+// register before a run starts (references into the registry stay valid only until the next
+// registration).
+void RegisterFormulation(FormulationInfo info);
 std::vector<std::string> FormulationNames();
 
 // A library the suite is linked with and its version ("" when this build has none of it).

@@ -20,6 +20,7 @@
 #include "problems/problem.h"
 #include "solvers/equation_solver.h"
 #include "solvers/linear_solver.h"
+#include "step_bindings.h"
 
 namespace py = pybind11;
 
@@ -115,6 +116,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("catalogue", &Catalogue, "problems, formulations, solvers and linear solvers");
   m.def("accepts", &Accepts, py::arg("args"));
   m.def("execute", &Execute, py::arg("command"), py::arg("args"));
+  BindSteps(m);
   m.def("records_markdown", &RecordsMarkdown, "the record files' columns (docs/records.md)");
   m.attr("EXIT_OK") = kExitOk;
   m.attr("EXIT_BAD_ARGUMENTS") = kExitBadArguments;

@@ -31,7 +31,8 @@ function(contactbench_add_python_module)
   endif()
   # build/python/contactbench: the package, importable with PYTHONPATH=build/python.
   set(package_dir ${PROJECT_BINARY_DIR}/python/contactbench)
-  pybind11_add_module(contactbench_python MODULE ${PROJECT_SOURCE_DIR}/python/module.cc)
+  pybind11_add_module(contactbench_python MODULE ${PROJECT_SOURCE_DIR}/python/module.cc
+    ${PROJECT_SOURCE_DIR}/python/step_bindings.cc)
   set_target_properties(contactbench_python PROPERTIES OUTPUT_NAME _core
     LIBRARY_OUTPUT_DIRECTORY ${package_dir})
   target_link_libraries(contactbench_python PRIVATE contactbench_harness)
@@ -56,6 +57,6 @@ function(contactbench_add_python_module)
     add_test(NAME python.module
       COMMAND ${Python_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/python_module/run_pytest.py)
     set_tests_properties(python.module PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77 ENVIRONMENT
-      "PYTHONPATH=${PROJECT_BINARY_DIR}/python;CONTACTBENCH_BINARY=$<TARGET_FILE:contactbench>")
+      "PYTHONPATH=${PROJECT_BINARY_DIR}/python;CONTACTBENCH_BINARY=$<TARGET_FILE:contactbench>;CONTACTBENCH_PLUGIN=${PROJECT_BINARY_DIR}/examples/plugin/libmin_newton.so")
   endif()
 endfunction()

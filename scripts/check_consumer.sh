@@ -69,3 +69,14 @@ cmake --build "$tmp/consumer" >/dev/null
 tail -n 1 "$tmp/trace.txt"
 grep -q "^truss-2d-bar-wall: .*(40 accepted steps, 1 kinks)$" "$tmp/trace.txt"
 echo "check_consumer: the installed package builds and runs examples/consumer" >&2
+
+# examples/plugin: a formulation compiled on its own against the installed package, loaded by
+# the installed driver with --plugin and compared beside a built-in one (docs/your-own-method.md).
+cmake -S "$here/examples/plugin" -B "$tmp/plugin" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" "${launcher[@]}" \
+  >/dev/null
+cmake --build "$tmp/plugin" >/dev/null
+"$tmp/prefix/bin/contactbench" compare --plugin "$tmp/plugin/libmin_newton.so" --problem arch-flat \
+  --formulations min-newton,active-set --starts warm --steps 4 --out "$tmp/plugin-compare" 2>/dev/null
+grep -q "^arch-flat,min-newton,.*,converged," "$tmp/plugin-compare/runs.csv"
+echo "check_consumer: the installed package builds examples/plugin and the driver compares it" >&2

@@ -19,6 +19,7 @@
 #include "harness/memory_budget.h"
 #include "harness/options.h"
 #include "harness/plot_command.h"
+#include "harness/plugins.h"
 #include "harness/records_doc.h"
 #include "harness/rerun.h"
 #include "harness/run_json.h"
@@ -111,6 +112,7 @@ int Rerun(const RunArguments& a) {
     std::fprintf(stderr, "rerun: --force: rerunning although%s\n", listed.c_str());
   }
   const CommandInfo* command = FindCommand(plan.command);
+  for (const auto& plugin : PluginPaths(plan.arguments)) LoadPlugin(plugin);  // as Main does
   const RunArguments arguments = ParseArguments(command->command, plan.arguments);
   RunJson record;
   record.command_line = {RunningBinary(), plan.command};
@@ -176,8 +178,9 @@ int Main(int argc, char** argv) {
       throw UsageError("unknown command '" + args[0] + "'" + DidYouMean(args[0], CommandNames()) +
                        " (valid: " + Join(CommandNames()) + ")");
     }
-    const RunArguments a =
-        ParseArguments(command->command, std::vector<std::string>(args.begin() + 1, args.end()));
+    const std::vector<std::string> options(args.begin() + 1, args.end());
+    for (const auto& plugin : PluginPaths(options)) LoadPlugin(plugin);  // before the parser
+    const RunArguments a = ParseArguments(command->command, options);
     if (a.help) {
       std::cout << CommandHelp(*command);
       return kExitOk;

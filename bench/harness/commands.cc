@@ -33,8 +33,6 @@
 
 namespace cb::harness {
 
-namespace {
-
 // The configuration of formulation `name`: the common settings plus its own --option values.
 FormulationConfig ConfigFor(const RunArguments& a, const std::string& name) {
   FormulationConfig config = a.config;
@@ -62,8 +60,6 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.controls.interrupted = [] { return InterruptRequested(); };
   return options;
 }
-
-}  // namespace
 
 void PrepareOutput(const std::string& dir) {
   std::error_code ec;

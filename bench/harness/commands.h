@@ -11,9 +11,11 @@
 #include <memory>
 #include <string>
 
+#include "formulations/common/config.h"
 #include "harness/options.h"
 #include "harness/record_schema.h"
 #include "harness/run_json.h"
+#include "path/path.h"
 #include "problems/problem.h"
 #include "step/formulation.h"
 
@@ -45,6 +47,12 @@ int WithRecords(const RunArguments& a, RunJson* record, RecordTexts* memory,
 // arguments, with the closest known key for an unknown one).
 std::unique_ptr<Formulation> MakeConfiguredFormulation(const RunArguments& a,
                                                        const std::string& name);
+
+// The configuration of formulation `name`: the common settings plus its own --option values.
+FormulationConfig ConfigFor(const RunArguments& a, const std::string& name);
+
+// The library's path options for the problem (problem_path.h), changed by the options given.
+PathOptions MakePathOptions(const RunArguments& a, const Problem& problem);
 
 // Refuses an output directory that cannot be written before any work starts: created if
 // missing, then probed with a file (permissions alone do not tell: root, read-only mounts).

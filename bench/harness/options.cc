@@ -336,6 +336,9 @@ std::vector<Option> MakeOptions() {
       {"--option", "FORMULATION:KEY=VALUE", kCompare, Need::kOptional, true,
        "a setting of the formulation named", nullptr,
        [](O o, S v, A* a) { FormulationOption(o, v, true, a); }},
+      {"--plugin", "FILE", kPathCommands | kList, Need::kOptional, true,
+       "load a plug-in's formulations (docs/your-own-method.md); read before the other options",
+       nullptr, [](O, S, A*) {}},
       {"--petsc-options", "OPTIONS", kPathCommands, Need::kOptional, false,
        "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
        "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"; passed to PETSc as "

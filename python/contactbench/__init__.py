@@ -21,7 +21,8 @@ from . import _core
 
 __all__ = ["catalogue", "problems", "parameters", "formulations", "solvers",
            "linear_solvers", "accepts", "run", "compare", "Result", "Interrupted",
-           "UsageError", "EXIT_OK", "EXIT_FAILURE", "EXIT_INTERRUPTED"]
+           "UsageError", "EXIT_OK", "EXIT_FAILURE", "EXIT_INTERRUPTED", "step", "judge",
+           "register", "load_plugin", "Step", "StepSystem"]
 
 UsageError = _core.UsageError
 EXIT_OK = _core.EXIT_OK
@@ -174,3 +175,7 @@ def compare(problem=None, formulations=None, **options):
     """`contactbench compare` with these options (formulations: a list of names); returns a
     Result whose `runs` has one row per formulation and start."""
     return _execute("compare", dict(options, problem=problem, formulations=formulations))
+
+
+# The step as data and your own method (method.py): imported last, it uses _arguments.
+from .method import Step, StepSystem, judge, load_plugin, register, step  # noqa: E402
