@@ -23,6 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Line3DCollection  # noqa: E402
 
 from plotlib import comparison, obstacles  # noqa: E402
 
@@ -105,61 +106,197 @@ def plot_path(records, path):
 
 # --- the deformed shapes ---------------------------------------------------------------------
 
+# The edges of each element kind by its corners (VTK/Gmsh corner order): a hexahedron's twelve
+# (0-3 one face, 4-7 the other), a tetrahedron's six, a polygon's ring, a member's one.
+HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+             (0, 4), (1, 5), (2, 6), (3, 7)]
+TET_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+
+
+def element_edges(corners, dim):
+    """The corner pairs joined by an edge in an element of `corners` corners in `dim` D."""
+    if corners == 8:
+        return HEX_EDGES
+    if corners == 4 and dim == 3:
+        return TET_EDGES
+    if corners == 2:
+        return [(0, 1)]
+    return [(k, (k + 1) % corners) for k in range(corners)]
+
+
 def _state_segments(nodes, cells, dims):
-    """The element edges of one saved state in the deformed configuration."""
+    """The element edges of one saved state in the deformed configuration, an array
+    (edges x 2 x len(dims)): each element's edges in turn (element_edges), the elements of one
+    kind together, in the order of their ids."""
     xyz = nodes[dims].to_numpy(dtype=float) + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
-    moved = dict(zip(nodes["node"].astype(int), xyz))
-    segments = []
-    for _, corners in cells.sort_values(["cell", "corner"]).groupby("cell"):
-        ids = list(corners["node"])
-        ring = ids if len(ids) == 2 else ids + ids[:1]
-        segments += [(moved[a], moved[b]) for a, b in zip(ring, ring[1:])]
-    return segments
+    point = pd.Series(np.arange(len(nodes)), index=nodes["node"].astype(int).to_numpy())
+    ordered = cells.sort_values(["cell", "corner"])
+    size = ordered.groupby("cell")["corner"].transform("size")
+    parts = []
+    for corners, kind in ordered.groupby(size, sort=True):
+        ids = point.loc[kind["node"].astype(int).to_numpy()].to_numpy().reshape(-1, corners)
+        edges = np.array(element_edges(corners, len(dims)))
+        ends = np.stack([xyz[ids[:, edges[:, 0]]], xyz[ids[:, edges[:, 1]]]], axis=2)
+        parts.append(ends.reshape(-1, 2, len(dims)))
+    return np.concatenate(parts) if parts else np.zeros((0, 2, len(dims)))
+
+
+# A hexahedron's six faces (corner order as HEX_EDGES).
+HEX_FACES = [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+
+
+def outer_edges(cells):
+    """The node pairs (n x 2, ascending) of the edges on a solid's outer surface: the edges of
+    the hexahedra's faces that belong to one hexahedron only, each once. What a 3-D figure
+    draws: the inner edges of a mesh only hide its surface and the contact patch."""
+    ordered = cells.sort_values(["cell", "corner"])
+    hexes = ordered.groupby("cell").filter(lambda c: len(c) == 8) if len(ordered) else ordered
+    ids = hexes["node"].astype(int).to_numpy().reshape(-1, 8)
+    faces = np.concatenate([ids[:, list(f)] for f in HEX_FACES])
+    key = np.sort(faces, axis=1)
+    _, first, count = np.unique(key, axis=0, return_index=True, return_counts=True)
+    outer = faces[first[count == 1]]
+    pairs = np.concatenate([outer[:, [k, (k + 1) % 4]] for k in range(4)])
+    return np.unique(np.sort(pairs, axis=1), axis=0)
+
+
+def _outer_segments(nodes, edges, dims, scale=1.0):
+    """The segments of `edges` (node pairs) with the nodes moved by `scale` times u."""
+    n = nodes.set_index(nodes["node"].astype(int))
+    xyz = n[dims].to_numpy(dtype=float) + scale * n[["u" + c for c in dims]].to_numpy(dtype=float)
+    point = pd.Series(np.arange(len(n)), index=n.index)
+    at = point.loc[edges.ravel()].to_numpy().reshape(-1, 2)
+    return np.stack([xyz[at[:, 0]], xyz[at[:, 1]]], axis=1)
+
+
+def display_scale(nodes, dims):
+    """The factor the displacements of a 3-D figure are drawn with: 1 when the largest is at
+    least 2 % of the body's size, else the factor that makes it 5 % (a Hertz contact's
+    indentation is invisible to scale)."""
+    size = float((nodes[dims].max() - nodes[dims].min()).max())
+    largest = float(np.sqrt((nodes[["u" + c for c in dims]] ** 2).sum(axis=1)).max())
+    if largest <= 0.0 or largest >= 0.02 * size:
+        return 1.0
+    return float(f"{0.05 * size / largest:.1g}")
+
+
+def _distinct_states(snapshots):
+    """(step, label) of the saved states to draw: one per step (the last label saved there,
+    so that the final state replaces the regular save of its step), at most 5 evenly spread
+    with the last one kept."""
+    saved = list(dict.fromkeys(zip(snapshots["step"], snapshots["label"])))
+    last = {step: label for step, label in saved}
+    saved = [(step, label) for step, label in saved if last[step] == label]
+    saved = list(dict.fromkeys(saved))
+    if len(saved) > 5:
+        saved = [saved[int(round(i))] for i in np.linspace(0, len(saved) - 1, 5)]
+    return saved
+
+
+def _body_box(nodes, dims, margin=0.15):
+    """(low, high) around the body's reference and deformed nodes, `margin` of its largest
+    side each way: the window of a panel (obstacles may reach far beyond the body)."""
+    reference = nodes[dims].to_numpy(dtype=float)
+    moved = reference + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
+    both = np.vstack([reference, moved])
+    low, high = both.min(axis=0), both.max(axis=0)
+    pad = margin * max(float((high - low).max()), 1e-12)
+    return low - pad, high + pad
+
+
+def _contact_points(contacts, nodes, dims, step, label):
+    if contacts is None:
+        return None
+    c = contacts[(contacts["step"] == step) & (contacts["label"] == label)]
+    closed = nodes[nodes["node"].isin(c[c["r"] < 0]["node"])]
+    if not len(closed):
+        return None
+    return [closed[d] + closed["u" + d] for d in dims]
+
+
+def _panel_2d(ax, nodes, cells, dims, drawn, contacts, step, label):
+    reference = nodes.assign(**{"u" + c: 0.0 for c in dims})
+    ax.add_collection(LineCollection(_state_segments(reference, cells, dims), color="0.75",
+                                     lw=0.6, label="reference"))
+    ax.add_collection(LineCollection(_state_segments(nodes, cells, dims), color="tab:blue",
+                                     lw=1.0, label="deformed"))
+    obstacles.draw(ax, drawn)
+    closed = _contact_points(contacts, nodes, dims, step, label)
+    if closed is not None:
+        ax.plot(*closed, "o", color="tab:orange", markersize=3, linestyle="none",
+                label="nodes in contact")
+    low, high = _body_box(nodes, dims)
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (the problem's length unit)")
+    ax.set_ylabel("y")
+
+
+def _panel_3d(ax, nodes, edges, dims, drawn, closed, colour):
+    """One state of a solid: the edges of its outer surface as one collection, the obstacles'
+    faces inside the window as another, the nodes in contact marked; the window is the body's."""
+    low, high = _body_box(nodes, dims)
+    ax.add_collection3d(Line3DCollection(_outer_segments(nodes, edges, dims), colors=colour,
+                                         linewidths=0.5))
+    obstacles.draw_3d(ax, drawn, low, high)
+    if closed is not None:
+        ax.plot(*closed, "o", color="tab:orange", markersize=2, linestyle="none")
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    ax.set_zlim(low[2], high[2])
+    ax.set_box_aspect(high - low)
+    ax.view_init(elev=-25, azim=-60)  # from below: the contact face and its patch
+    for axis, name in zip("xyz", dims):
+        getattr(ax, f"set_{axis}label")(name, fontsize=8)
+    ax.tick_params(labelsize=6)
 
 
 def plot_deformed(records, path):
-    """One panel per saved state (at most 6: evenly spread, the final state last); the mesh in
-    its reference (grey) and deformed (colour) configurations, pairs in contact marked, and the
-    obstacles. False when the run saved no state of a body."""
+    """One panel per distinct saved state (at most 5, the final state last). 2-D: the mesh in
+    its reference (grey) and deformed (blue) configurations over each other; 3-D: the reference
+    configuration in a panel of its own (grey) first, then the deformed ones (blue), each drawn
+    by its elements' edges. The obstacles in red, the nodes in contact in orange; every window
+    framed on the body. None when the run saved no state of a body."""
     snapshots, cells = records["snapshots"], records["cells"]
     if snapshots is None or cells is None or not len(snapshots):
         return None
     dims = ["x", "y", "z"] if "z" in snapshots else ["x", "y"]
-    saved = list(dict.fromkeys(zip(snapshots["step"], snapshots["label"])))
-    if len(saved) > 6:
-        saved = [saved[int(round(i))] for i in np.linspace(0, len(saved) - 1, 6)]
-    drawn = obstacles.read(records["dir"])
-    columns = min(3, len(saved))
-    rows = -(-len(saved) // columns)
     three_d = len(dims) == 3
+    saved = _distinct_states(snapshots)
+    panels = ([None] if three_d else []) + saved  # None: the reference configuration
+    drawn = obstacles.read(records["dir"])
+    columns = min(3, len(panels))
+    rows = -(-len(panels) // columns)
     fig = plt.figure(figsize=(5.5 * columns, 4.2 * rows))
     contacts = records["snapshot_contacts"]
-    for k, (step, label) in enumerate(saved):
+    edges = outer_edges(cells) if three_d else None
+    scale = display_scale(snapshots, dims) if three_d else 1.0
+    for k, panel in enumerate(panels):
+        step, label = panel if panel is not None else saved[0]
         nodes = snapshots[(snapshots["step"] == step) & (snapshots["label"] == label)]
         ax = fig.add_subplot(rows, columns, k + 1, projection="3d" if three_d else None)
-        reference = nodes.assign(**{"u" + c: 0.0 for c in dims})
-        for state, style in ((reference, dict(color="0.75", lw=0.6)),
-                             (nodes, dict(color="tab:blue", lw=1.0))):
-            segments = _state_segments(state, cells, dims)
-            if three_d:
-                for a, b in segments:
-                    ax.plot(*zip(a, b), **style)
-            else:
-                ax.add_collection(LineCollection(segments, **style))
-        obstacles.draw(ax, drawn, three_d)
-        if contacts is not None:
-            c = contacts[(contacts["step"] == step) & (contacts["label"] == label)]
-            closed = nodes[nodes["node"].isin(c[c["r"] < 0]["node"])]
-            if len(closed):
-                xyz = [closed[d] + closed["u" + d] for d in dims]
-                ax.plot(*xyz, "o", color="tab:orange", markersize=3, linestyle="none")
+        if panel is None:
+            _panel_3d(ax, nodes.assign(**{"u" + c: 0.0 for c in dims}), edges, dims, drawn, None,
+                      "0.55")
+            ax.set_title("reference configuration", fontsize=9, y=1.1)
+            continue
+        if three_d:
+            shown = nodes.assign(**{"u" + c: scale * nodes["u" + c] for c in dims})
+            _panel_3d(ax, shown, edges, dims, drawn,
+                      _contact_points(contacts, shown, dims, step, label), "tab:blue")
+        else:
+            _panel_2d(ax, nodes, cells, dims, drawn, contacts, step, label)
         lam = float(nodes["lambda"].iloc[0])
-        ax.set_title(f"step {step} ({label}), lambda = {lam:.4g}", fontsize=9)
-        if not three_d:
-            ax.set_aspect("equal", adjustable="datalim")
-            ax.autoscale_view()
-    fig.suptitle(f"{_problem(records)}: deformed shapes (grey: reference, red: obstacles, "
-                 "orange: nodes in contact)")
+        ax.set_title(f"step {step} ({label}), lambda = {lam:.4g}", fontsize=9,
+                     y=1.1 if three_d else 1.0)
+    shown = "displacements to scale" if scale == 1.0 else f"displacements x {scale:g}"
+    if three_d:
+        key = "grey: reference, blue: deformed (outer surface)"
+    else:
+        key = "grey: reference, blue: deformed"
+    fig.suptitle(f"{_problem(records)}: deformed shapes ({key}, red: obstacles, orange: nodes "
+                 f"in contact; {shown})", fontsize=10)
     fig.tight_layout()
     return _save(fig, path)
 
