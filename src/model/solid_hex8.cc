@@ -370,7 +370,7 @@ std::vector<std::vector<int>> SolidHex8::Cells() const {
 }
 
 std::vector<CellField> SolidHex8::CellFields(const Vec& u) const {
-  return {{"von_mises", VonMisesStress(u)}};
+  return {{"von_mises_stress", VonMisesStress(u)}};
 }
 
 // A dead traction t on the bilinear face x(xi, eta) = sum_a N_a x_a: the consistent nodal

@@ -55,7 +55,7 @@ class SolidHex8 final : public ElasticBody {
 
   std::vector<std::vector<int>> Cells() const override;
   std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
-  // "von_mises": VonMisesStress(u).
+  // "von_mises_stress": VonMisesStress(u) (the name of the 2-D elements' field).
   std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<Element>& elements() const { return elements_; }
   const SolidMaterial& material() const { return material_; }
