@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <tuple>
+#include <utility>
 
 #include "core/csv.h"
 
@@ -238,38 +240,83 @@ void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell
   CloseOrRemove(out, path);
 }
 
-void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
-                     const std::string& id) {
+namespace {
+
+// The surfaces as one: their points and cells appended in turn, and the surface each line and
+// each polygon comes from (in VTK's cell order: every line, then every polygon).
+struct MergedSurfaces {
+  SurfaceGeometry all;
+  std::vector<int> line_of, polygon_of;
+};
+
+MergedSurfaces Merged(const std::vector<SurfaceGeometry>& surfaces) {
+  MergedSurfaces m;
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const int offset = static_cast<int>(m.all.points.size());
+    const SurfaceGeometry& s = surfaces[k];
+    m.all.points.insert(m.all.points.end(), s.points.begin(), s.points.end());
+    for (const auto& [cells, of, into] :
+         {std::tuple(&s.lines, &m.line_of, &m.all.lines),
+          std::tuple(&s.polygons, &m.polygon_of, &m.all.polygons)}) {
+      for (std::vector<int> cell : *cells) {
+        for (int& point : cell) point += offset;
+        into->push_back(std::move(cell));
+        of->push_back(static_cast<int>(k));
+      }
+    }
+  }
+  return m;
+}
+
+// VTK's ASCII strings: the byte values of each, each string ended by a 0.
+void WriteStrings(std::ofstream& out, const std::vector<std::string>& strings) {
+  for (const std::string& text : strings) {
+    for (unsigned char c : text) out << static_cast<int>(c) << ' ';
+    out << "0 ";
+  }
+}
+
+}  // namespace
+
+void WriteObstaclesVtp(const std::string& path, const std::vector<SurfaceGeometry>& surfaces,
+                       const std::vector<std::string>& ids) {
+  const MergedSurfaces m = Merged(surfaces);
   std::ofstream out = Open(path);
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PolyData>\n"
       << "    <FieldData>\n"
-      << "      <Array type=\"String\" Name=\"id\" NumberOfTuples=\"1\" format=\"ascii\">";
-  // VTK's ASCII strings are byte values, each string ended by a 0.
-  for (unsigned char c : id) out << static_cast<int>(c) << ' ';
-  out << "0</Array>\n"
+      << "      <Array type=\"String\" Name=\"id\" NumberOfTuples=\"" << ids.size()
+      << "\" format=\"ascii\">";
+  WriteStrings(out, ids);
+  out << "</Array>\n"
       << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << surface.points.size() << "\" NumberOfVerts=\"0\" "
-      << "NumberOfLines=\"" << surface.lines.size() << "\" NumberOfStrips=\"0\" "
-      << "NumberOfPolys=\"" << surface.polygons.size() << "\">\n"
+      << "    <Piece NumberOfPoints=\"" << m.all.points.size() << "\" NumberOfVerts=\"0\" "
+      << "NumberOfLines=\"" << m.all.lines.size() << "\" NumberOfStrips=\"0\" "
+      << "NumberOfPolys=\"" << m.all.polygons.size() << "\">\n"
       << "      <Points>\n"
       << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Point3& p : surface.points) {
+  for (const Point3& p : m.all.points) {
     out << "          " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   out << "        </DataArray>\n      </Points>\n";
-  if (!surface.lines.empty()) {
+  if (!m.all.lines.empty()) {
     out << "      <Lines>\n";
-    WriteConnectivity(out, surface.lines);
+    WriteConnectivity(out, m.all.lines);
     out << "      </Lines>\n";
   }
-  if (!surface.polygons.empty()) {
+  if (!m.all.polygons.empty()) {
     out << "      <Polys>\n";
-    WriteConnectivity(out, surface.polygons);
+    WriteConnectivity(out, m.all.polygons);
     out << "      </Polys>\n";
   }
-  out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  out << "      <CellData Scalars=\"obstacle\">\n"
+      << "        <DataArray type=\"Int32\" Name=\"obstacle\" format=\"ascii\">\n         ";
+  for (const std::vector<int>* of : {&m.line_of, &m.polygon_of}) {
+    for (int k : *of) out << ' ' << k;
+  }
+  out << "\n        </DataArray>\n      </CellData>\n"
+      << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
   CloseOrRemove(out, path);
 }
 
