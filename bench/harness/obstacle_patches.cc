@@ -64,8 +64,8 @@ std::vector<SurfaceGeometry> DrawnObstacles(const BodyContactModel& model) {
     const int node = pairs[k] == 1 ? only_node[k] : -1;
     const bool patch = node >= 0 && dynamic_cast<const HalfSpace*>(obstacles[k].get()) != nullptr &&
                        std::isfinite(shortest[node]);
-    surfaces.push_back(ObstacleSurface(
-        *obstacles[k], patch ? BoxAt(points[node], 0.5 * shortest[node]) : around));
+    surfaces.push_back(
+        ObstacleSurface(*obstacles[k], patch ? BoxAt(points[node], 0.5 * shortest[node]) : around));
   }
   return surfaces;
 }
