@@ -103,10 +103,9 @@ void SnapshotWriter::SaveAt(const State& state, int step, const std::string& lab
 }
 
 void SnapshotWriter::WriteIndex(const std::string& stem, const State& state) const {
-  std::vector<std::string> cell_fields;  // the names, which an element-less body has too
-  for (const CellField& f : problem_.body->body().Restricted({})->CellFields(state.u)) {
-    cell_fields.push_back(f.name);
-  }
+  // The names and components, which an element-less body has too.
+  const std::vector<CellField> cell_fields =
+      problem_.body->body().Restricted({})->CellFields(state.u);
   std::vector<std::string> pieces;
   pieces.reserve(static_cast<std::size_t>(processes_));
   for (int p = 0; p < processes_; ++p) pieces.push_back(PieceFile(stem, p));

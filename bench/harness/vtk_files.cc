@@ -104,6 +104,21 @@ struct GridSelection {
   const BodyPiece* piece;
 };
 
+// The NumberOfComponents attribute of an array of `components` (none for 1).
+std::string Components(int components) {
+  return components == 1 ? "" : " NumberOfComponents=\"" + std::to_string(components) + "\"";
+}
+
+// The attributes that make the first scalar field and the first tensor ParaView's defaults.
+std::string ActiveArrays(const std::vector<CellField>& fields) {
+  std::string scalars, tensors;
+  for (const CellField& f : fields) {
+    if (f.components == 1 && scalars.empty()) scalars = " Scalars=\"" + XmlEscaped(f.name) + "\"";
+    if (f.components == 9 && tensors.empty()) tensors = " Tensors=\"" + XmlEscaped(f.name) + "\"";
+  }
+  return scalars + tensors;
+}
+
 void WriteIndices(std::ofstream& out, const char* name, const std::vector<int>& indices) {
   out << "        <DataArray type=\"Int64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
   for (int i : indices) out << ' ' << i;
@@ -181,11 +196,10 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
   out << "      </PointData>\n";
   const std::vector<CellField> fields =
       whole ? body.CellFields(state.u) : body.Restricted(grid.cells)->CellFields(state.u);
-  out << "      <CellData"
-      << (fields.empty() ? "" : " Scalars=\"" + XmlEscaped(fields.front().name) + "\"") << ">\n";
+  out << "      <CellData" << ActiveArrays(fields) << ">\n";
   for (const CellField& field : fields) {
-    out << "        <DataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name)
-        << "\" format=\"ascii\">\n         ";
+    out << "        <DataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name) << "\""
+        << Components(field.components) << " format=\"ascii\">\n         ";
     for (double v : field.values) out << ' ' << v;
     out << "\n        </DataArray>\n";
   }
@@ -210,7 +224,7 @@ void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const St
   WriteGrid(path, problem, state, step, {piece.nodes, piece.cells, &piece});
 }
 
-void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+void WriteBodyPvtu(const std::string& path, const std::vector<CellField>& cell_fields,
                    const std::vector<std::string>& pieces) {
   std::ofstream out = Open(path);
   out << "<?xml version=\"1.0\"?>\n"
@@ -222,11 +236,10 @@ void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell
       << "      <PDataArray type=\"Int64\" Name=\"global_point\"/>\n"
       << "      <PDataArray type=\"UInt8\" Name=\"vtkGhostType\"/>\n"
       << "    </PPointData>\n"
-      << "    <PCellData"
-      << (cell_fields.empty() ? "" : " Scalars=\"" + XmlEscaped(cell_fields.front()) + "\"")
-      << ">\n";
-  for (const std::string& name : cell_fields) {
-    out << "      <PDataArray type=\"Float64\" Name=\"" << XmlEscaped(name) << "\"/>\n";
+      << "    <PCellData" << ActiveArrays(cell_fields) << ">\n";
+  for (const CellField& field : cell_fields) {
+    out << "      <PDataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name) << "\""
+        << Components(field.components) << "/>\n";
   }
   out << "      <PDataArray type=\"Int64\" Name=\"global_cell\"/>\n"
       << "    </PCellData>\n"

@@ -40,7 +40,7 @@ void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const St
 
 // The parallel index (.pvtu, VTK's PUnstructuredGrid) of the pieces `pieces` (paths relative to
 // it) that WriteBodyPieceVtu wrote, whose cell data are `cell_fields`.
-void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+void WriteBodyPvtu(const std::string& path, const std::vector<CellField>& cell_fields,
                    const std::vector<std::string>& pieces);
 
 // The obstacles of a problem as one poly data set: each surface's points and cells appended in
