@@ -170,6 +170,7 @@ void DescribeArguments(const RunArguments& a, const Problem& problem, RunJson* r
   record->problem_source =
       a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
   record->problem_notes = problem.notes;
+  record->control = problem.control_label;
   record->settings = a.settings;
   record->tolerance = a.tolerance;
   record->time_limit_s = a.time_limit;
