@@ -25,12 +25,15 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection  # noqa: E402
 
-from plotlib import comparison, obstacles  # noqa: E402
+from plotlib import comparison, obstacles, styles  # noqa: E402
 
 RECORDS = ["steps", "iterations", "kinks", "critical", "snapshots", "snapshot_contacts",
            "cells", "runs"]
 CRITICAL_MARKER = {"limit": ("v", "tab:red"), "bifurcation": ("D", "tab:purple"),
                    "stability_change": ("s", "tab:brown")}
+# The legend's words for critical.csv's kinds.
+CRITICAL_WORDS = {"limit": "limit points", "bifurcation": "bifurcation points",
+                  "stability_change": "changes of stability"}
 
 
 def _read_csv(path):
@@ -56,10 +59,18 @@ def is_comparison(records):
 
 
 def _groups(steps):
-    """(label, rows) per formulation x start, in the order they appear."""
+    """(label, rows, style) per formulation x start, in the order they appear: the style the
+    formulation's fixed colour and marker (plotlib/styles.py), dashed for a cold start."""
     keys = list(dict.fromkeys(zip(steps["formulation"], steps["start"])))
     return [(comparison.solver_label(f, s),
-             steps[(steps["formulation"] == f) & (steps["start"] == s)]) for f, s in keys]
+             steps[(steps["formulation"] == f) & (steps["start"] == s)],
+             dict(styles.style(f), linestyle="--" if s == "cold" else "-")) for f, s in keys]
+
+
+def control_label(records):
+    """What control_disp is, from run.json's `control` (the problem's label, with its unit)."""
+    control = records["run"].get("control")
+    return control if control else "control displacement (in the problem's length unit)"
 
 
 def _save(fig, path):
@@ -80,11 +91,12 @@ def plot_path(records, path):
     state; kinks (x) and critical points marked."""
     steps = records["steps"]
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    for label, g in _groups(steps):
+    for label, g, style in _groups(steps):
         accepted = g[g["accepted"].astype(bool)].sort_values("step")
         x = np.concatenate([[0.0], accepted["control_disp"].to_numpy(dtype=float)])
         y = np.concatenate([[0.0], accepted["lambda"].to_numpy(dtype=float)])
-        ax.plot(x, y, ".-", markersize=3, linewidth=1.2, label=label)
+        ax.plot(x, y, markersize=3, linewidth=1.2, label=label,
+                markevery=max(1, len(x) // 20), **style)
     kinks = records["kinks"]
     if kinks is not None and len(kinks):
         ok = kinks[kinks["verified"].astype(bool)]
@@ -95,8 +107,9 @@ def plot_path(records, path):
         for kind, g in critical.groupby("kind"):
             marker, colour = CRITICAL_MARKER.get(kind, ("o", "tab:gray"))
             ax.plot(g["control_disp"], g["lambda"], marker, color=colour, markersize=8,
-                    markerfacecolor="none", markeredgewidth=1.6, label=f"{kind} ({len(g)})")
-    ax.set_xlabel("control displacement")
+                    markerfacecolor="none", markeredgewidth=1.6,
+                    label=f"{CRITICAL_WORDS.get(kind, kind)} ({len(g)})")
+    ax.set_xlabel(control_label(records))
     ax.set_ylabel("load parameter lambda")
     ax.set_title(f"{_problem(records)}: the path")
     ax.grid(True, alpha=0.3)
@@ -194,13 +207,15 @@ def _distinct_states(snapshots):
 
 
 def _body_box(nodes, dims, margin=0.15):
-    """(low, high) around the body's reference and deformed nodes, `margin` of its largest
-    side each way: the window of a panel (obstacles may reach far beyond the body)."""
+    """(low, high) around the body's reference and deformed nodes, `margin` of each side each
+    way (at least a twentieth of the largest side): the window of a panel (obstacles may reach
+    far beyond the body)."""
     reference = nodes[dims].to_numpy(dtype=float)
     moved = reference + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
     both = np.vstack([reference, moved])
     low, high = both.min(axis=0), both.max(axis=0)
-    pad = margin * max(float((high - low).max()), 1e-12)
+    side = high - low
+    pad = np.maximum(margin * side, 0.05 * max(float(side.max()), 1e-12))
     return low - pad, high + pad
 
 
@@ -228,7 +243,7 @@ def _panel_2d(ax, nodes, cells, dims, drawn, contacts, step, label):
     low, high = _body_box(nodes, dims)
     ax.set_xlim(low[0], high[0])
     ax.set_ylim(low[1], high[1])
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x (the problem's length unit)")
     ax.set_ylabel("y")
 
@@ -266,9 +281,14 @@ def plot_deformed(records, path):
     saved = _distinct_states(snapshots)
     panels = ([None] if three_d else []) + saved  # None: the reference configuration
     drawn = obstacles.read(records["dir"])
-    columns = min(3, len(panels))
+    low, high = _body_box(snapshots, dims)
+    wide = (high[0] - low[0]) / max(high[1] - low[1], 1e-12)  # a flat arch: 15 to 1
+    if not three_d and wide > 3.0:  # one wide panel a row: at 3 a row the body is a line
+        columns, panel = 1, (14.0, min(4.2, max(1.6, 14.0 / wide + 0.9)))
+    else:
+        columns, panel = min(3, len(panels)), (5.5, 4.2)
     rows = -(-len(panels) // columns)
-    fig = plt.figure(figsize=(5.5 * columns, 4.2 * rows))
+    fig = plt.figure(figsize=(panel[0] * columns, panel[1] * rows))
     contacts = records["snapshot_contacts"]
     edges = outer_edges(cells) if three_d else None
     scale = display_scale(snapshots, dims) if three_d else 1.0
@@ -297,7 +317,7 @@ def plot_deformed(records, path):
         key = "grey: reference, blue: deformed"
     fig.suptitle(f"{_problem(records)}: deformed shapes ({key}, red: obstacles, orange: nodes "
                  f"in contact; {shown})", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.4 / fig.get_figheight()))
     return _save(fig, path)
 
 
@@ -306,11 +326,11 @@ def plot_deformed(records, path):
 def plot_cost(records, path):
     """Iterations and wall time of every attempt against its step; failed attempts hollow."""
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
-    for label, g in _groups(records["steps"]):
+    for label, g, style in _groups(records["steps"]):
         ok = g["accepted"].astype(bool)
         for ax, column in ((top, "iterations"), (bottom, "time_s")):
-            line, = ax.plot(g[ok]["step"], g[ok][column], ".-", markersize=3, linewidth=0.8,
-                            label=label)
+            line, = ax.plot(g[ok]["step"], g[ok][column], markersize=3, linewidth=0.8,
+                            label=label, markevery=max(1, int(ok.sum()) // 20), **style)
             if (~ok).any():
                 ax.plot(g[~ok]["step"], g[~ok][column], "o", markerfacecolor="none",
                         color=line.get_color(), label=f"{label}: not accepted")
@@ -341,11 +361,11 @@ def plot_residual(records, path, step):
         raise ValueError(f"step {step} has no iteration in iterations.csv "
                          f"(steps {iterations['step'].min()}-{iterations['step'].max()})")
     fig, ax = plt.subplots(figsize=(8, 5))
-    for label, g in _groups(rows):
+    for label, g, style in _groups(rows):
         for attempt, a in g.groupby("attempt"):
             name = label if attempt == 0 else f"{label}, attempt {attempt}"
-            ax.semilogy(a["iteration"], a["residual_inf"].clip(lower=1e-300), "o-",
-                        markersize=3, label=name)
+            ax.semilogy(a["iteration"], a["residual_inf"].clip(lower=1e-300), markersize=3,
+                        label=name, **dict(style, alpha=1.0 if attempt == 0 else 0.5))
     ax.set_xlabel("iteration")
     ax.set_ylabel("norm_inf(F) of the formulation's system")
     ax.set_title(f"{_problem(records)}: residual history of step {step}")
