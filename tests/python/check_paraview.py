@@ -8,7 +8,8 @@ runs a 2-D path (examples/q4-block-on-floor.json, a state saved every 10 steps) 
 it offers, fetches the data and reads every point, cell and field array of every block. Checks:
 the times are the .pvd's (the reference state first, at 0, then increasing); each time has the
 body and the obstacles; the body has `displacement` (3 components), `contact_reaction`, the cell
-array `von_mises_stress` under the same name in 2-D and 3-D, and the field data `lambda` and
+arrays `von_mises_stress` and `stress` (the Cauchy tensor, 9 components) under the same names in
+2-D and 3-D, and the field data `lambda` and
 `step` (0 and 0 at the reference, where the displacement is 0); the obstacles are one data set
 with the cell array `obstacle` and the field data `id`; every array finite with one tuple per
 point or cell.
@@ -92,7 +93,8 @@ def check_run(label, result, failures):
         body = [leaf for name, ls in leaves.items() if name != "obstacles" for leaf in ls]
         for leaf in body:
             check_arrays(where, leaf, {"point:displacement": 3, "point:contact_reaction": 1,
-                                       "cell:von_mises_stress": 1, "field:lambda": 1,
+                                       "cell:von_mises_stress": 1, "cell:stress": 9,
+                                       "field:lambda": 1,
                                        "field:step": 1}, failures)
             if state["time"] == 0.0:
                 arrays = leaf["arrays"]
