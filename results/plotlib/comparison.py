@@ -691,7 +691,7 @@ def skipped_line(skipped):
         message = str(g["message"].iloc[0])
         reason = message.replace(f + " ", "", 1) if message.startswith(f + " ") else message
         by_reason.setdefault(reason, []).append(f)
-    parts = [f"{', '.join(fs)} ({reason})" for reason, fs in by_reason.items()]
+    parts = [f"{', '.join(fs)} - {reason}" for reason, fs in by_reason.items()]
     return ["Skipped: " + "; ".join(parts) + ".", ""]
 
 

@@ -193,7 +193,7 @@ class SkippedLine(unittest.TestCase):
             "message": ["a cannot express X", "a cannot express X", "b cannot express X",
                         "b cannot express X", "no Ipopt in this build"]})
         lines = c.skipped_line(skipped)
-        self.assertEqual(lines, ["Skipped: a, b (cannot express X); c (no Ipopt in this build).",
+        self.assertEqual(lines, ["Skipped: a, b - cannot express X; c - no Ipopt in this build.",
                                  ""])
 
     def test_nothing_skipped_no_line(self):
