@@ -38,9 +38,7 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
   WriteObstacles();
 }
 
-// The obstacles, written once in one file (obstacles are rigid and fixed); and the reference
-// configuration, the first time of the collection (one process: a distributed run's collection
-// starts at its first saved state).
+// The obstacles, written once in one file: obstacles are rigid and fixed.
 void SnapshotWriter::WriteObstacles() {
   const auto& obstacles = problem_.body->obstacles();
   if (!obstacles.empty()) {
@@ -51,10 +49,23 @@ void SnapshotWriter::WriteObstacles() {
     obstacles_file_ = problem_.name + "_obstacles.vtp";
     WriteObstaclesVtp(directory_ + "/vtk/" + obstacles_file_, DrawnObstacles(*problem_.body), ids);
   }
+}
+
+// The unloaded reference configuration (u = 0, lambda = 0, step 0), the first time of the
+// collection, as the saved states are written (in pieces with their index in a distributed run).
+void SnapshotWriter::WriteReference() {
+  const State zero = ZeroState(*problem_.model);
+  const std::string stem = problem_.name + "_reference";
   if (processes_ == 1) {
-    reference_file_ = problem_.name + "_reference.vtu";
-    WriteBodyVtu(directory_ + "/vtk/" + reference_file_, problem_, ZeroState(*problem_.model), 0);
+    reference_file_ = WriteBody(stem, zero, 0);
+    return;
   }
+  std::string file;
+  OnEveryProcess("saving the reference state", [&] { file = WritePieces(stem, zero, 0); });
+  OnEveryProcess("indexing the reference state", [&] {  // once every piece is whole
+    if (process_ == 0) WriteIndex(stem, zero);
+  });
+  reference_file_ = file;
 }
 
 void SnapshotWriter::OnAttempt(const StepAttempt& a) {
@@ -77,6 +88,7 @@ double SnapshotWriter::CollectionTime(const State& state, double back) const {
 
 void SnapshotWriter::SaveAt(const State& state, int step, const std::string& label, double time) {
   if (!problem_.body) return;
+  if (reference_file_.empty()) WriteReference();
   char number[32];
   std::snprintf(number, sizeof number, "_%04d", static_cast<int>(saved_.size()));
   const std::string stem = problem_.name + number;

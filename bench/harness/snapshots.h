@@ -66,6 +66,7 @@ class SnapshotWriter final : public PathObserver {
   std::string WritePieces(const std::string& stem, const State& state, int step);
   void WriteIndex(const std::string& stem, const State& state) const;
   void WriteObstacles();
+  void WriteReference();
   void WriteCollection() const;
 
   std::string directory_;
@@ -76,7 +77,7 @@ class SnapshotWriter final : public PathObserver {
   std::unique_ptr<RecordWriter<PairRow>> contacts_;
   std::vector<Saved> saved_;
   std::string obstacles_file_;  // relative to DIR/vtk; empty: no obstacle
-  std::string reference_file_;  // likewise; empty: not written (a distributed run)
+  std::string reference_file_;  // likewise; empty: not yet written
   double arc_length_ = 0.0;     // of the accepted steps so far
   double last_theta_ = 0.0;     // of the last accepted step
 };
