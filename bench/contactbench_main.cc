@@ -1,5 +1,6 @@
 // The suite driver: see harness/cli.h.
 #include <csignal>
+#include <cstdlib>
 
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc_dist/parallel_libraries.h"
@@ -7,7 +8,22 @@
 #include "harness/interrupt.h"
 #include "harness/relaunch.h"
 
+namespace {
+
+// Set when the driver returns its status. A library that ends the process from inside the run
+// with exit(0) (a Fortran STOP: the sequential MUMPS's stand-in BLACS did, leaving mpirun
+// status 0 and no run.json) must not pass for success: the process then exits with 70
+// (EX_SOFTWARE). Nothing in the suite calls exit(), so every other exit returns through main.
+bool returned = false;
+
+void ExitedFromInsideTheRun() {
+  if (!returned) std::_Exit(70);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  std::atexit(ExitedFromInsideTheRun);
   // Under mpirun, before MPI starts: the parallel MPI and MUMPS in front of the sequential
   // stand-ins Ipopt and Siconos link (parallel_libraries.h); nothing to do otherwise.
   cb::harness::RelaunchWithLibrariesFirst(cb::ParallelLibrariesPreload(), argv);
@@ -18,5 +34,7 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   // PETSc starts on first use, once per process; this scope finalises it (petsc.h).
   const cb::PetscProcessScope petsc;
-  return cb::harness::Main(argc, argv);
+  const int status = cb::harness::Main(argc, argv);
+  returned = true;
+  return status;
 }

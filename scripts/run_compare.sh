@@ -28,6 +28,13 @@
 #                            500, 200, 100 on P2 and 500, 250, 100, 50 on P3. Warm start, the
 #                            formulations of the full paths. Records go to
 #                            RESULTS_DIR/robustness/<problem>/theta-<theta>/.
+#   fclib                    opt-in (not among the default sets): the problem set of the FCLIB
+#                            files in FCLIB_DIR (default tests/data/fclib, the five committed
+#                            Siconos files), read with friction dropped (mu = 0), every available
+#                            formulation on every file, cold and from each file's guesses, each
+#                            solve repeated FCLIB_REPEAT times (default 5); `compare
+#                            --problem-dir`, records in problems.csv (docs/comparison.md
+#                            "Problem sets").
 #
 # Timings (docs/comparison.md "Timing protocol"): block's single solve is repeated BLOCK_REPEAT
 # times (default 5; compare --repeat) and recorded as the median with its min and max; a path's
@@ -44,7 +51,7 @@
 # arch-curved-prefix 818 s (~550 s nlopt-mpcc, ~250 s nlopt-merit), block 6 s.
 # Usage: scripts/run_compare.sh [SET ...]   (default: all six sets, in the order above)
 # Environment: BUILD_DIR (default build/), RESULTS_DIR (default results/), TIME_LIMIT (5),
-# BLOCK_REPEAT (5),
+# BLOCK_REPEAT (5), FCLIB_DIR (tests/data/fclib), FCLIB_REPEAT (5),
 # PREFIX_STEPS (50), FULL_STEPS (the problems' own), ROBUST_THETAS, ROBUST_ARC_FLAT (100),
 # ROBUST_ARC_CURVED (50), ROBUST_PROBLEMS (arch-flat arch-curved), SKIP_SETUP=1 to use an existing build without running setup.sh.
 set -uo pipefail
@@ -97,6 +104,9 @@ for set in "${sets[@]}"; do
     block)
       compare "$out/block" --problem block --formulations "$all" --starts cold \
           --repeat "$block_repeat" ;;
+    fclib)
+      compare "$out/fclib" --problem-dir "${FCLIB_DIR:-$here/tests/data/fclib}" \
+          --set friction=ignore --formulations "$all" --repeat "${FCLIB_REPEAT:-5}" ;;
     robustness)
       for problem in ${ROBUST_PROBLEMS:-arch-flat arch-curved}; do
         for theta in "${robust_thetas[@]}"; do

@@ -14,6 +14,7 @@
 #include "core/csv.h"
 #include "formulations/registry.h"
 #include "harness/commands.h"
+#include "harness/fclib_export.h"
 #include "harness/interrupt.h"
 #include "harness/memory_budget.h"
 #include "harness/options.h"
@@ -68,14 +69,12 @@ int Export(const RunArguments& a) {
           "scripts/packages.txt, and configure again)");
     }
     PrepareOutput(dir.string());
-    try {
-      io::WriteFclibFile(problem, a.out);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(e.what());
-    }
-    std::fprintf(stderr, "%s -> %s (FCLIB, mu = 0)\n", problem.name.c_str(), a.out.c_str());
+    const std::string what = ExportFclib(a, problem);
+    std::fprintf(stderr, "%s -> %s (FCLIB, mu = 0; %s)\n", problem.name.c_str(), a.out.c_str(),
+                 what.c_str());
     return kExitOk;
   }
+  if (a.export_step) throw UsageError("--step: only with --format fclib");
   std::string text;
   try {
     text = io::ProblemToJson(problem);

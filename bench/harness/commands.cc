@@ -19,6 +19,7 @@
 #include "harness/interrupt.h"
 #include "harness/memory_budget.h"
 #include "harness/output_directory.h"
+#include "harness/problem_set.h"
 #include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/run_inputs.h"
@@ -222,11 +223,14 @@ int InMemory(const RunArguments& a, RunJson* record, RecordTexts* memory,
   return status;
 }
 
-// Where the records go: the claimed output directory, else `memory`.
+}  // namespace
+
 int WithRecords(const RunArguments& a, RunJson* record, RecordTexts* memory,
                 const std::function<int(const RecordTarget&, std::string* reason)>& body) {
   return memory != nullptr ? InMemory(a, record, memory, body) : InOutputDirectory(a, record, body);
 }
+
+namespace {
 
 // Where the records went, for the messages.
 std::string Destination(const RecordTarget& target) {
@@ -273,12 +277,18 @@ void PrintSummaryLine(const Problem& problem, const Formulation& formulation,
   }
 }
 
-// The run itself, its records in `target` (a claimed output directory or memory).
+// The start a run's records name: warm, cold, near or guess:K.
+std::string StartLabel(const RunArguments& a) {
+  if (a.start_guess > 0) return "guess:" + std::to_string(a.start_guess);
+  return a.start_near ? "near" : ToString(a.start);
+}
+
+// The run itself, its records in `target` (a claimed output directory or memory). `guess`:
+// --start guess:K's state, the start of the fixed-load solve.
 int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
              const PathOptions& options, const RecordTarget& target, OutputReadyWord* ready,
-             RunJson* record, std::string* reason) {
+             RunJson* record, std::string* reason, std::optional<State> near) {
   // --start near: the reference formulation's solution, perturbed (near_start.h).
-  std::optional<State> near;
   if (a.start_near) {
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
     const Activity solving("solving --start near's reference problem");
@@ -296,7 +306,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   RecordFiles files(target);
   RunRecorder recorder(&files, problem,
                        {problem.name, formulation.name(), formulation.solver(),
-                        formulation.settings(), a.start_near ? "near" : ToString(a.start), "run"},
+                        formulation.settings(), StartLabel(a), "run"},
                        problem.loading == LoadingKind::kFixedLoad ? 1 : options.max_steps);
   WriteParameters(target, problem);
   // The saved states are files (VTK among them): only in an output directory.
@@ -357,6 +367,15 @@ std::unique_ptr<Formulation> MakeRunFormulation(const RunArguments& a) {
 
 }  // namespace
 
+std::unique_ptr<Formulation> MakeConfiguredFormulation(const RunArguments& a,
+                                                       const std::string& name) {
+  try {
+    return MakeFormulation(name, ConfigFor(a, name));
+  } catch (const std::invalid_argument& e) {
+    RefuseFormulationSettings(e);
+  }
+}
+
 bool AcceptsProblem(const RunArguments& a, std::string* reason) {
   const Problem problem = LoadProblem(a);
   return MakeRunFormulation(a)->Accepts(FirstStep(problem, MakePathOptions(a, problem)), reason);
@@ -377,13 +396,17 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
   if (a.start_near && DistributedSize() > 1) {
     throw UsageError("--start near: not in a run of several processes");
   }
+  const std::optional<State> guess = GuessStart(a, problem);
+  if (guess && DistributedSize() > 1) {
+    throw UsageError("--start guess:K: not in a run of several processes");
+  }
   if (DistributedRank() != 0) return FollowRun(a, problem, *formulation, options);
   OutputReadyWord ready;  // to the other processes, even when this one fails before
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
-  record->starts = {a.start_near ? "near" : ToString(a.start)};
+  record->starts = {StartLabel(a)};
   return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
-    return TraceRun(a, problem, *formulation, options, target, &ready, record, reason);
+    return TraceRun(a, problem, *formulation, options, target, &ready, record, reason, guess);
   });
 }
 
@@ -496,6 +519,7 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
 }  // namespace
 
 int CompareCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
+  if (!a.problem_dir.empty()) return ProblemSetCommand(a, record, memory);
   Problem problem = LoadProblem(a);
   std::vector<std::unique_ptr<Formulation>> formulations;
   std::unique_ptr<Formulation> reference;

@@ -199,6 +199,11 @@ std::vector<Option> MakeOptions() {
       {"--problem-file", "F.json", kProblemCommands, Need::kProblem, false,
        "a problem file: a truss, a plane-stress Q4 mesh, or an LCP (docs/problem-files.md)",
        nullptr, [](O, S v, A* a) { a->problem_file = v; }},
+      {"--problem-dir", "DIR[,F...]", kCompare, Need::kProblem, false,
+       "a problem set: every FCLIB file (.hdf5, .h5) of each directory listed, and each "
+       "fixed-load problem file listed, solved by every formulation cold and from each of the "
+       "file's guesses; records in problems.csv (docs/comparison.md, \"Problem sets\")",
+       nullptr, [](O, S v, A* a) { a->problem_dir = v; }},
       {"--formulation", "NAME", kRun, Need::kRequired, false, "the formulation", FormulationNames,
        [](O o, S v, A* a) { a->formulation = Choice(o, v); }},
       {"--formulations", "A,B,...", kCompare, Need::kOptional, false,
@@ -247,13 +252,18 @@ std::vector<Option> MakeOptions() {
       {"--arc-length", "THETA", kPathCommands, Need::kOptional, false,
        "the arc length theta of (33) (default: the problem's)", nullptr,
        [](O o, S v, A* a) { a->arc_length = PositiveNumber(o, v); }},
-      {"--start", "warm|cold|near", kRun, Need::kOptional, false,
+      {"--start", "warm|cold|near|guess:K", kRun, Need::kOptional, false,
        "the start of each solve (default warm). near (fixed-load problems, e.g. P1): the solve "
        "starts from the solution of implicit-fb (eta 1, Newton) perturbed by the relative "
        "offset of --near-offset with a fixed pattern, as the report's section 5.1 starts eta "
-       "case 3 near the solution",
+       "case 3 near the solution. guess:K (an FCLIB file): from the file's /guesses/K",
        RunStarts,
        [](O o, S v, A* a) {
+         if (v.rfind("guess:", 0) == 0) {
+           a->start_guess = ParseInteger(o, v.substr(6));
+           if (a->start_guess < 1) Refuse(o, "guess:K needs K >= 1, got '" + v + "'");
+           return;
+         }
          a->start_near = Choice(o, v) == "near";
          a->start = ParseStart(v);
        }},
@@ -334,6 +344,14 @@ std::vector<Option> MakeOptions() {
        "PETSc options for the petsc-* formulations, over their defaults (a direct solve; "
        "docs/backend-petsc.md), e.g. \"-snes_monitor -snes_max_it 50\"",
        nullptr, [](O, S v, A* a) { a->petsc_options = v; }},
+      {"--step", "N", kExport, Need::kOptional, false,
+       "with --format fclib, a path's step N (traced by implicit-fb) at its load, with its "
+       "answer as /solution and step N - 1's state as /guesses/1",
+       nullptr,
+       [](O o, S v, A* a) {
+         a->export_step = ParseInteger(o, v);
+         if (*a->export_step <= 0) Refuse(o, "must be a positive integer");
+       }},
       {"--step", "N", kPlot, Need::kOptional, false,
        "the step whose residual history is drawn (default: the one with the most iterations)",
        nullptr,
@@ -470,6 +488,18 @@ constexpr const char* kExitStatus =
     "step, a stagnating path, a write, out of memory; records kept); 4 interrupted by SIGINT or "
     "SIGTERM (records kept).";
 
+// A problem set's solves are fixed-load, cold and from the files' guesses: the options of
+// paths and of their starts would be ignored, so they are refused.
+void RefuseForProblemSets(const std::set<std::string>& given) {
+  for (const char* name : {"--starts", "--mode", "--reference", "--steps", "--arc-length"}) {
+    if (given.count(name)) {
+      throw UsageError(std::string(name) +
+                       ": not with --problem-dir (its solves are fixed-load, cold and from "
+                       "each file's guesses)");
+    }
+  }
+}
+
 void ApplyCompareDefaults(RunArguments* a) {
   if (a->formulations.empty()) {
     for (const auto& info : FormulationRegistry()) {
@@ -579,6 +609,7 @@ RunArguments ParseArguments(Command command, const std::vector<std::string>& arg
     throw UsageError(std::string(info->operand) + " is required");
   }
   if (command == kCompare) ApplyCompareDefaults(&a);
+  if (given.count("--problem-dir")) RefuseForProblemSets(given);
   return a;
 }
 

@@ -55,13 +55,15 @@ struct RunArguments {
   bool help = false;
   std::string problem;
   std::string problem_file;
-  std::string formulation;                // run
+  std::string problem_dir;  // compare --problem-dir: directories and files, comma-separated
+  std::string formulation;  // run
   std::vector<std::string> formulations;  // compare
   std::vector<StartKind> starts;          // compare
   std::string mode = "replay";            // compare
   std::string reference = "implicit-fb";  // compare
   std::string out;
   std::string export_format = "json";  // export: json or fclib
+  std::optional<int> export_step;      // export --format fclib --step N: a path's step N
   bool overwrite = false;              // run, compare: replace an earlier run's records in `out`
   bool force = false;         // rerun: run even when the build, a library or an input differs
   bool allow_memory = false;  // run the problem even when its memory estimate exceeds the limit
@@ -73,6 +75,7 @@ struct RunArguments {
   std::optional<double> arc_length;
   StartKind start = StartKind::kWarm;
   bool start_near = false;  // run --start near: a warm start near a reference solution
+  int start_guess = 0;      // run --start guess:K: from the FCLIB file's /guesses/K (0: not)
   double near_offset = 1e-2;
   // The library's defaults (problem_path.h), so that a run without options traces as a
   // program using DefaultPathOptions does.

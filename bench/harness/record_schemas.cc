@@ -1,5 +1,7 @@
 #include "harness/record_schemas.h"
 
+#include <limits>
+
 namespace cb::harness {
 
 namespace {
@@ -27,7 +29,7 @@ Column<Data> SolverColumn() {
 }
 template <typename Data>
 Column<Data> StartColumn() {
-  return {"start", "warm, cold, or near (`run --start near`)",
+  return {"start", "warm, cold, near (`run --start near`) or guess:K (an FCLIB file's /guesses/K)",
           [](const Data& d) -> Cell { return d.label.start; }};
 }
 template <typename Data>
@@ -37,7 +39,9 @@ Column<Data> SettingsColumn() {
 }
 template <typename Data>
 Column<Data> ModeColumn() {
-  return {"mode", "run (`contactbench run`), replay or free (`contactbench compare --mode`)",
+  return {"mode",
+          "run (`contactbench run`), replay or free (`contactbench compare --mode`), set "
+          "(`compare --problem-dir`)",
           [](const Data& d) -> Cell { return d.label.mode; }};
 }
 
@@ -472,11 +476,110 @@ const RecordSchema<RunOutcomeRow>& RunsSchema() {
   return schema;
 }
 
+namespace {
+
+// A problem set's solve: what its attempt says, or `skipped` for a formulation that refused.
+template <typename Value>
+Cell OfAttempt(const ProblemSetRow& d, Value (*value)(const StepAttempt&), const Cell& otherwise) {
+  return d.attempt != nullptr ? Cell(value(*d.attempt)) : otherwise;
+}
+
+std::string_view ProblemSetStatus(const ProblemSetRow& d) {
+  if (d.attempt == nullptr) return "skipped";
+  return d.attempt->accepted ? "verified" : "failed";
+}
+
+}  // namespace
+
+const RecordSchema<ProblemSetRow>& ProblemSetSchema() {
+  using D = ProblemSetRow;
+  using A = const StepAttempt&;
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  static const RecordSchema<D> schema{
+      "problems.csv",
+      "",
+      "problem x formulation x start of a problem set (`compare --problem-dir`)",
+      {"compare"},
+      {
+          ProblemColumn<D>(),
+          {"source", "the problem file", [](const D& d) -> Cell { return d.source; }},
+          FormulationColumn<D>(),
+          SolverColumn<D>(),
+          StartColumn<D>(),
+          SettingsColumn<D>(),
+          {"d", "unknowns of the body (of an LCP: its size)",
+           [](const D& d) -> Cell { return d.problem.model->num_dofs(); }},
+          {"nc", "contact pairs", [](const D& d) -> Cell { return d.problem.model->num_pairs(); }},
+          {"status",
+           "verified (the verdict verified the answer at `tolerance`), failed, or skipped (the "
+           "formulation refused the problem; `message` says why)",
+           [](const D& d) -> Cell { return ProblemSetStatus(d); }},
+          {"found", "what the solver claims (as `found` in `steps.csv`; empty when skipped)",
+           [](const D& d) -> Cell {
+             return OfAttempt<const char*>(
+                 d, [](A a) { return ToString(a.result.status); }, "");
+           }},
+          {"iterations", "outer iterations (the counting rule of docs/comparison.md)",
+           [](const D& d) -> Cell {
+             return OfAttempt<int>(
+                 d, [](A a) { return a.result.counts.iterations; }, 0);
+           }},
+          {"time_s", "wall time of the solve, seconds: the median of `time_samples` solves",
+           [](const D& d) -> Cell {
+             return OfAttempt<double>(
+                 d, [](A a) { return a.result.time_s; }, kNone);
+           }},
+          {"time_min_s", "the fastest of them, seconds",
+           [](const D& d) -> Cell {
+             return OfAttempt<double>(
+                 d, [](A a) { return a.result.time_min_s; }, kNone);
+           }},
+          {"time_max_s", "the slowest of them, seconds",
+           [](const D& d) -> Cell {
+             return OfAttempt<double>(
+                 d, [](A a) { return a.result.time_max_s; }, kNone);
+           }},
+          {"time_samples", "how many solves were timed (`--repeat`; 0 when skipped)",
+           [](const D& d) -> Cell {
+             return OfAttempt<int>(
+                 d, [](A a) { return a.result.time_samples; }, 0);
+           }},
+          {"repeats_agree", "every repetition gave the first solve's answer (the one judged)",
+           [](const D& d) -> Cell {
+             return OfAttempt<bool>(
+                 d, [](A a) { return a.result.repeats_disagreement.empty(); }, true);
+           }},
+          {"eq_res", "the verdict's equilibrium residual (as in `steps.csv`)",
+           [](const D& d) -> Cell {
+             return OfAttempt<double>(
+                 d, [](A a) { return a.verdict.eq_res; }, kNone);
+           }},
+          {"comp_res", "the verdict's complementarity residual (as in `steps.csv`)",
+           [](const D& d) -> Cell {
+             return OfAttempt<double>(
+                 d, [](A a) { return a.verdict.comp_res; }, kNone);
+           }},
+          {"fclib_error",
+           "the FCLIB literature's error of the answer: natural-map residual relative to the "
+           "data (`src/verdict/natural_map_error.h`; nan for a nonlinear problem or when "
+           "skipped)",
+           [](const D& d) -> Cell { return d.fclib_error; }},
+          {"time_limit_s", "the time limit per solve, seconds (`--time-limit`; 0: none)",
+           [](const D& d) -> Cell { return d.time_limit_s; }},
+          {"tolerance", "the verdict's tolerance (`--tol`)",
+           [](const D& d) -> Cell { return d.tolerance; }},
+          {"message", "the solver's message, or why the formulation refused the problem",
+           [](const D& d) -> Cell { return d.message; }},
+      }};
+  return schema;
+}
+
 std::vector<RecordDoc> RecordDocs() {
-  return {StepsSchema().Doc(),    IterationsSchema().Doc(), KinksSchema().Doc(),
-          CriticalSchema().Doc(), SolutionSchema().Doc(),   ComplementaritySolutionSchema().Doc(),
-          ContactsSchema().Doc(), SnapshotsSchema().Doc(),  SnapshotContactsSchema().Doc(),
-          CellsSchema().Doc(),    ParametersSchema().Doc(), RunsSchema().Doc()};
+  return {StepsSchema().Doc(),     IterationsSchema().Doc(), KinksSchema().Doc(),
+          CriticalSchema().Doc(),  SolutionSchema().Doc(),   ComplementaritySolutionSchema().Doc(),
+          ContactsSchema().Doc(),  SnapshotsSchema().Doc(),  SnapshotContactsSchema().Doc(),
+          CellsSchema().Doc(),     ParametersSchema().Doc(), RunsSchema().Doc(),
+          ProblemSetSchema().Doc()};
 }
 
 }  // namespace cb::harness

@@ -100,6 +100,19 @@ struct RunOutcomeRow {
   double tolerance = 0.0;
 };
 
+// One formulation x start on one problem of a problem set (`compare --problem-dir`): the
+// fixed-load solve's attempt, or none when the formulation refused the problem.
+struct ProblemSetRow {
+  const RunLabel& label;
+  std::string_view source;  // the problem file
+  const Problem& problem;
+  const StepAttempt* attempt = nullptr;  // nullptr: skipped
+  double fclib_error = 0.0;              // natural_map_error.h (NaN: not defined)
+  std::string_view message;              // the solve's message, or why it was skipped
+  double time_limit_s = 0.0;
+  double tolerance = 0.0;
+};
+
 const RecordSchema<AttemptRow>& StepsSchema();
 const RecordSchema<IterationRow>& IterationsSchema();
 const RecordSchema<KinkRow>& KinksSchema();
@@ -112,6 +125,7 @@ const RecordSchema<PairRow>& SnapshotContactsSchema();
 const RecordSchema<CellCornerRow>& CellsSchema();
 const RecordSchema<ParameterRow>& ParametersSchema();
 const RecordSchema<RunOutcomeRow>& RunsSchema();
+const RecordSchema<ProblemSetRow>& ProblemSetSchema();
 
 // Every record file's documentation, in the order of docs/records.md.
 std::vector<RecordDoc> RecordDocs();

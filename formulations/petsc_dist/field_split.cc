@@ -3,8 +3,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "formulations/petsc_dist/node_blocks.h"
 
 namespace cb {
 
@@ -80,6 +84,35 @@ PetscInt NodeBlockSize(const ElasticBody& body, PetscInt du_first, PetscInt du_l
   return dim;
 }
 
+// Splits "0" (du, carrying the near-null space `rigid` for GAMG) and "1" (the rest) of `pc`.
+PetscErrorCode SetSplits(PC pc, IS du, IS rest, MatNullSpace rigid) {
+  // PCFIELDSPLIT hands a split's "nearnullspace" to the split's matrix (for GAMG).
+  PetscCall(PetscObjectCompose(reinterpret_cast<PetscObject>(du), "nearnullspace",
+                               reinterpret_cast<PetscObject>(rigid)));
+  PetscCall(PCFieldSplitSetIS(pc, "0", du));
+  PetscCall(PCFieldSplitSetIS(pc, "1", rest));
+  return 0;
+}
+
+// The splits of the node-blocked system (node_blocks.h): whole nodes, block size dim, the rigid
+// modes from the coordinates.
+PetscErrorCode SetBlockedSplit(PC pc, const NodeBlocks& blocks, int dim) {
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(pc));
+  IS du = nullptr, rest = nullptr;
+  PetscCall(ISCreateStride(comm, dim * (blocks.node_last() - blocks.node_first()),
+                           dim * blocks.node_first(), 1, &du));
+  PetscCall(ISSetBlockSize(du, dim));
+  PetscCall(ISCreateStride(comm, blocks.rest_last() - blocks.rest_first(),
+                           blocks.Blocked(blocks.rest_first()), 1, &rest));
+  MatNullSpace rigid = nullptr;
+  PetscCall(blocks.RigidModes(&rigid));
+  PetscCall(SetSplits(pc, du, rest, rigid));
+  PetscCall(MatNullSpaceDestroy(&rigid));
+  PetscCall(ISDestroy(&du));
+  PetscCall(ISDestroy(&rest));
+  return 0;
+}
+
 }  // namespace
 
 PetscErrorCode SetDisplacementSplit(PC pc, const ElasticBody& body, PetscInt first, PetscInt last) {
@@ -93,12 +126,8 @@ PetscErrorCode SetDisplacementSplit(PC pc, const ElasticBody& body, PetscInt fir
   PetscCall(ISCreateStride(comm, std::max<PetscInt>(0, last - rest_first), rest_first, 1, &rest));
   MatNullSpace rigid = nullptr;
   PetscCall(MakeRigidModes(comm, body, du_first, du_last, &rigid));
-  // PCFIELDSPLIT hands a split's "nearnullspace" to the split's matrix (for GAMG).
-  PetscCall(PetscObjectCompose(reinterpret_cast<PetscObject>(du), "nearnullspace",
-                               reinterpret_cast<PetscObject>(rigid)));
+  PetscCall(SetSplits(pc, du, rest, rigid));
   PetscCall(MatNullSpaceDestroy(&rigid));
-  PetscCall(PCFieldSplitSetIS(pc, "0", du));
-  PetscCall(PCFieldSplitSetIS(pc, "1", rest));
   PetscCall(ISDestroy(&du));
   PetscCall(ISDestroy(&rest));
   return 0;
@@ -114,6 +143,11 @@ struct Augmented {
   PC inner = nullptr;
   ::Mat t = nullptr, tj = nullptr;
   ::Vec weights = nullptr, scaled = nullptr, work = nullptr;
+  // The inner split solves the node-blocked T J (node_blocks.h), so that GAMG gets whole nodes
+  // and the rigid modes whatever the supports.
+  std::unique_ptr<NodeBlocks> blocks;
+  ::Mat blocked_tj = nullptr;
+  ::Vec blocked_in = nullptr, blocked_out = nullptr;
 };
 
 // Calls visit(column, value) on each entry of row `row` (owned here) of `j`.
@@ -137,6 +171,9 @@ PetscErrorCode DestroyAugmented(PC pc) {
   PetscCall(VecDestroy(&a->weights));
   PetscCall(VecDestroy(&a->scaled));
   PetscCall(VecDestroy(&a->work));
+  PetscCall(MatDestroy(&a->blocked_tj));
+  PetscCall(VecDestroy(&a->blocked_in));
+  PetscCall(VecDestroy(&a->blocked_out));
   PetscCall(PCDestroy(&a->inner));
   delete a;
   PetscCall(PCShellSetContext(pc, nullptr));
@@ -255,7 +292,8 @@ PetscErrorCode SetUpAugmented(PC pc) {
   PetscCall(MakeT(pmat, a));
   PetscCall(MatDestroy(&a->tj));
   PetscCall(MatMatMult(a->t, pmat, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &a->tj));
-  PetscCall(PCSetOperators(a->inner, a->tj, a->tj));
+  PetscCall(a->blocks->Expand(a->tj, &a->blocked_tj));
+  PetscCall(PCSetOperators(a->inner, a->blocked_tj, a->blocked_tj));
   PetscCall(PCSetUp(a->inner));
   return 0;
 }
@@ -264,7 +302,9 @@ PetscErrorCode ApplyAugmented(PC pc, ::Vec x, ::Vec y) {
   Augmented* a = nullptr;
   PetscCall(PCShellGetContext(pc, &a));
   PetscCall(MatMult(a->t, x, a->work));
-  PetscCall(PCApply(a->inner, a->work, y));
+  PetscCall(a->blocks->ToBlocked(a->work, a->blocked_in));
+  PetscCall(PCApply(a->inner, a->blocked_in, a->blocked_out));
+  PetscCall(a->blocks->ToReduced(a->blocked_out, y));
   return 0;
 }
 
@@ -276,16 +316,27 @@ PetscErrorCode SetAugmentedSplit(PC pc, const BodyContactModel& model, PetscInt 
   auto* a = new Augmented;
   a->d = model.num_dofs();
   a->nc = model.num_pairs();
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(pc));
+  PetscInt size = 0;
+  PetscCallMPI(MPI_Allreduce(&last, &size, 1, MPIU_INT, MPI_MAX, comm));
+  try {
+    a->blocks = std::make_unique<NodeBlocks>(comm, model.body(), size, first, last);
+  } catch (const std::exception&) {
+    delete a;
+    SETERRQ(comm, PETSC_ERR_LIB, "the node-blocked layout could not be made");
+  }
   const char* prefix = nullptr;
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
   PetscCall(PetscOptionsGetReal(nullptr, prefix, "-augmented_alpha", &a->alpha, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, prefix, "-augmented_cutoff", &a->cutoff, nullptr));
-  PetscCall(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(pc)), &a->inner));
+  PetscCall(PCCreate(comm, &a->inner));
   PetscCall(PCSetOptionsPrefix(a->inner, prefix));
   PetscCall(PCAppendOptionsPrefix(a->inner, "al_"));
   PetscCall(PCSetType(a->inner, PCFIELDSPLIT));
   PetscCall(PCSetFromOptions(a->inner));
-  PetscCall(SetDisplacementSplit(a->inner, model.body(), first, last));
+  PetscCall(a->blocks->CreateBlockedVec(&a->blocked_in));
+  PetscCall(VecDuplicate(a->blocked_in, &a->blocked_out));
+  PetscCall(SetBlockedSplit(a->inner, *a->blocks, model.body().dim()));
   PetscCall(PCShellSetContext(pc, a));
   PetscCall(PCShellSetSetUp(pc, SetUpAugmented));
   PetscCall(PCShellSetApply(pc, ApplyAugmented));

@@ -13,7 +13,7 @@ namespace cb {
 // The sequential stand-in that serves MPI or MUMPS in this process, "" when the real ones do.
 std::string SequentialStandIn();
 
-// Under a launcher of several processes (Open MPI's OMPI_COMM_WORLD_SIZE, PMI_SIZE) with a
+// Under an MPI launcher, of one process or several (OMPI_COMM_WORLD_SIZE, PMI_SIZE), with a
 // stand-in serving: the parallel libraries, already loaded, to put first (a colon-separated
 // LD_PRELOAD list); "" otherwise, and always without PETSc.
 std::string ParallelLibrariesPreload();

@@ -11,6 +11,7 @@ if(CONTACTBENCH_HAVE_PETSC)
     ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc
     ${CMAKE_CURRENT_LIST_DIR}/field_split.cc
+    ${CMAKE_CURRENT_LIST_DIR}/node_blocks.cc
     ${CMAKE_CURRENT_LIST_DIR}/parallel_libraries.cc)
 else()
   target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_dist_stub.cc)

@@ -30,7 +30,7 @@ EXIT_INTERRUPTED = _core.EXIT_INTERRUPTED
 
 # The record files a run or comparison may write, by attribute of Result.
 RECORD_FILES = ("steps", "iterations", "kinks", "critical", "runs", "solution", "contacts",
-                "parameters")
+                "parameters", "problems")
 
 
 def catalogue():
@@ -108,7 +108,7 @@ class Result:
     """The records of a run or comparison: `status` (the driver's exit status), `reason`,
     `info` (run.json), `files` ({file name: DataFrame}), and one attribute per record file
     (`steps`, `iterations`, `kinks`, `critical`, `runs`, `solution`, `contacts`,
-    `parameters`; None when the command does not write that file)."""
+    `parameters`, `problems`; None when the command does not write that file)."""
 
     def __init__(self, status, tables, info, out=None):
         self.status = status

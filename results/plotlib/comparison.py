@@ -4,6 +4,7 @@
   results_dir/compare/<set>/runs.csv, steps.csv   (`contactbench compare`, scripts/run_compare.sh)
   results_dir/bench/*.json                        (Google Benchmark JSON, scripts/run_bench.sh)
   results_dir/robustness/<problem>/<theta>/*.csv  (the step-size axis, plotlib/robustness.py)
+  results_dir/compare/<set>/problems.csv          (problem sets, plotlib/problem_sets.py)
 and writes results_dir/COMPARISON.md and PNG figures into results_dir/figures/comparison/.
 
 Aggregation (docs/comparison.md "Aggregation"), per comparison set (one directory
@@ -895,6 +896,8 @@ def write(results_dir):
         out += set_section(name, runs, steps, figures_dir, results_dir)
     from plotlib import robustness  # here: it uses this module's helpers
     out += robustness.section(results_dir, figures_dir)
+    from plotlib import problem_sets  # here: it uses this module's helpers
+    out += problem_sets.section(results_dir, figures_dir)
     out += targets_section(results_dir)
     out += scaling_section(results_dir, figures_dir)
     out += step_benchmark_section(results_dir)

@@ -123,6 +123,8 @@ class CondensedCholeskySolver final : public LinearSolver {
     return stats_.condensed_factorizations + fallback_->num_full_factorizations();
   }
   const std::string& message() const override { return message_; }
+  // Only the fallback LU tells a singular matrix (the condensed route falls back on failure).
+  bool singular() const override { return use_fallback_ && fallback_->singular(); }
   const CondensedSolverStats& stats() const { return stats_; }
 
  private:

@@ -75,7 +75,7 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
           !(j_gradient_norm2 > 0.0);
       if (stationary && !have_newton) {
         Finish(Status::kFailed,
-               "singular Jacobian and J^T F = 0" + at() +
+               internal::LinearFailure(*linear_solver_) + " and J^T F = 0" + at() +
                    ": a stationary point of ||F||^2 that is not a root (" +
                    linear_solver_->message() + ")",
                merit, f_, &summary);
@@ -143,10 +143,10 @@ SolverSummary DoglegSolver::Solve(EquationSystem& system, Vec* x,
     }
     const bool collapsed = !accepted && radius <= options_.step_tol * (1.0 + InfNorm(*x));
     if (step_too_small || collapsed) {
-      const std::string why =
-          have_newton
-              ? std::string()
-              : " (singular Jacobian, Cauchy steps only: " + linear_solver_->message() + ")";
+      const std::string why = have_newton
+                                  ? std::string()
+                                  : " (" + internal::LinearFailure(*linear_solver_) +
+                                        ", Cauchy steps only: " + linear_solver_->message() + ")";
       FinishStuck(system, *x, Status::kFailed,
                   "stagnation" + at() +
                       (step_too_small ? ": the step no longer changes x (step_tol)"

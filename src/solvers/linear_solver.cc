@@ -21,6 +21,12 @@
 namespace cb {
 namespace {
 
+// "an n x n matrix with nnz nonzeros", for a failure's message.
+std::string Size(const SpMat& a) {
+  return "a " + std::to_string(a.rows()) + " x " + std::to_string(a.cols()) + " matrix with " +
+         std::to_string(a.nonZeros()) + " nonzeros";
+}
+
 // The part every backend shares: argument checks, the non-finite check, and the decision
 // whether the symbolic analysis must be redone, by comparing the pattern with a copy of the
 // index arrays last analysed (O(nnz) integer compares, small next to a factorisation).
@@ -35,6 +41,7 @@ class PatternTrackingSolver : public LinearSolver {
                                   std::to_string(a.rows()) + " x " + std::to_string(a.cols()));
     }
     factorized_ = false;
+    singular_ = false;
     const SpMat* source = &a;
     if (!a.isCompressed()) {
       // Rare (a caller that inserted without makeCompressed); the comparison below and the
@@ -78,6 +85,7 @@ class PatternTrackingSolver : public LinearSolver {
 
   bool Solve(const Vec& b, Vec* x) final {
     if (x == nullptr) throw std::invalid_argument(name() + ": Solve needs an output vector");
+    singular_ = false;
     if (!factorized_) {
       message_ = name() + ": Solve called without a successful factorisation";
       return false;
@@ -96,6 +104,7 @@ class PatternTrackingSolver : public LinearSolver {
     if (!BackSolve(*rhs, x, &message_)) return false;
     if (!x->allFinite()) {
       message_ = name() + ": the solution has non-finite entries (matrix numerically singular)";
+      singular_ = true;
       return false;
     }
     return true;
@@ -104,8 +113,11 @@ class PatternTrackingSolver : public LinearSolver {
   int num_analyses() const final { return num_analyses_; }
   int num_full_factorizations() const final { return num_full_factorizations_; }
   const std::string& message() const final { return message_; }
+  bool singular() const final { return singular_; }
 
  protected:
+  // Set by a backend whose failure is a singular matrix (see LinearSolver::singular).
+  void MarkSingular() { singular_ = true; }
   // Symbolic analysis (ordering) of the pattern of `a`.
   virtual bool Analyze(const SpMat& a, std::string* why) = 0;
   // Numerical factorisation of `a`, whose pattern was analysed. Calls CountFullFactorization for
@@ -134,6 +146,7 @@ class PatternTrackingSolver : public LinearSolver {
   Vec rhs_;
   bool analysed_ = false;
   bool factorized_ = false;
+  bool singular_ = false;
   int num_analyses_ = 0;
   int num_full_factorizations_ = 0;
   std::string message_;
@@ -155,6 +168,7 @@ class EigenSparseLuSolver final : public PatternTrackingSolver {
     lu_.factorize(a);
     if (lu_.info() != Eigen::Success) {
       *why = "sparse-lu: factorisation failed (singular matrix): " + lu_.lastErrorMessage();
+      if (lu_.info() == Eigen::NumericalIssue) MarkSingular();
       return false;
     }
     return true;
@@ -207,8 +221,10 @@ class UmfpackSolver final : public PatternTrackingSolver {
     lu_.factorize(a);
     if (lu_.info() != Eigen::Success) {
       const int code = lu_.umfpackFactorizeReturncode();
-      *why = code == UMFPACK_WARNING_singular_matrix
-                 ? std::string("umfpack: matrix is singular")
+      if (code == UMFPACK_WARNING_singular_matrix) MarkSingular();
+      *why = code == UMFPACK_WARNING_singular_matrix ? std::string("umfpack: matrix is singular")
+             : code == UMFPACK_ERROR_out_of_memory
+                 ? "umfpack: out of memory factorising " + Size(a)
                  : "umfpack: numeric factorisation failed (UMFPACK status " + std::to_string(code) +
                        ")";
       return false;
@@ -264,7 +280,7 @@ class KluSolver final : public PatternTrackingSolver {
     FreeFactors();  // the old numeric object belongs to the old symbolic one
     symbolic_ = klu_analyze(static_cast<int>(a.rows()), ColumnPointers(a), RowIndices(a), &common_);
     if (symbolic_ == nullptr) {
-      *why = "klu: symbolic analysis failed (KLU status " + std::to_string(common_.status) + ")";
+      *why = "klu: symbolic analysis failed: " + KluStatus(a);
       return false;
     }
     return true;
@@ -279,10 +295,10 @@ class KluSolver final : public PatternTrackingSolver {
     // reports KLU_SINGULAR; a returned object with a non-OK status is discarded too, so the next
     // call pivots afresh.
     if (numeric_ == nullptr || common_.status != KLU_OK) {
+      if (common_.status == KLU_SINGULAR) MarkSingular();
       *why = common_.status == KLU_SINGULAR ? "klu: matrix is singular (zero pivot in column " +
                                                   std::to_string(common_.singular_col) + ")"
-                                            : "klu: numeric factorisation failed (KLU status " +
-                                                  std::to_string(common_.status) + ")";
+                                            : "klu: numeric factorisation failed: " + KluStatus(a);
       FreeNumeric();
       return false;
     }
@@ -299,6 +315,21 @@ class KluSolver final : public PatternTrackingSolver {
   }
 
  private:
+  // What KLU's status says, in words (klu.h): a failure other than a singular matrix.
+  std::string KluStatus(const SpMat& a) const {
+    switch (common_.status) {
+      case KLU_OUT_OF_MEMORY:
+        return "out of memory factorising " + Size(a) + " (KLU status -2)";
+      case KLU_TOO_LARGE:
+        return "integer overflow: " + Size(a) +
+               " is too large for KLU's int indices (KLU status -4)";
+      case KLU_INVALID:
+        return "invalid input (KLU status -3)";
+      default:
+        return "KLU status " + std::to_string(common_.status);
+    }
+  }
+
   // Accept a refactorisation with the previous pivot order only when it is about as accurate as
   // a fresh one. Rejected: a zero pivot; a pivot below machine epsilon times the largest
   // (klu_rcond, min |u_kk| / max |u_kk|: such a pivot is rounding noise). rcond is not invariant

@@ -33,6 +33,10 @@ class LinearSolver {
   // would be inaccurate, and otherwise refactorises more cheaply with the old order.
   virtual int num_full_factorizations() const = 0;
   virtual const std::string& message() const = 0;
+  // Whether the last failure of Factorize or Solve was the matrix being singular (to working
+  // precision). False for every other failure (out of memory, a non-finite entry, a backend
+  // error), which message() names: a caller says "singular" only when this says so.
+  virtual bool singular() const = 0;
 };
 
 // Names accepted by MakeLinearSolver, the default first.

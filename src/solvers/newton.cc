@@ -49,14 +49,10 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
       return summary;
     }
     ++summary.linear_solves;
-    if (!linear_solver_->Factorize(jacobian_)) {
-      Finish(Status::kFailed, "singular Jacobian" + at() + ": " + linear_solver_->message(), merit,
-             f_, &summary);
-      return summary;
-    }
-    if (!linear_solver_->Solve(f_, &dx_)) {
-      Finish(Status::kFailed, "singular Jacobian" + at() + ": " + linear_solver_->message(), merit,
-             f_, &summary);
+    if (!linear_solver_->Factorize(jacobian_) || !linear_solver_->Solve(f_, &dx_)) {
+      Finish(Status::kFailed,
+             internal::LinearFailure(*linear_solver_) + at() + ": " + linear_solver_->message(),
+             merit, f_, &summary);
       return summary;
     }
     dx_ = -dx_;

@@ -64,7 +64,8 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
         }
         ++summary.linear_solves;
         if (!linear_solver_->Factorize(jacobian_) || !ApplyInverse(f_, &dx_)) {
-          Finish(Status::kFailed, "singular Jacobian" + at() + ": " + linear_solver_->message(),
+          Finish(Status::kFailed,
+                 internal::LinearFailure(*linear_solver_) + at() + ": " + linear_solver_->message(),
                  merit, f_, &summary);
           return summary;
         }

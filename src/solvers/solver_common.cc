@@ -57,6 +57,10 @@ bool UseJacobian(const Vec& x, const SpMat& jacobian, SolverSummary* summary) {
 
 std::string At(int iteration) { return " at iteration " + std::to_string(iteration); }
 
+std::string LinearFailure(const LinearSolver& solver) {
+  return solver.singular() ? "singular Jacobian" : "linear solve failed";
+}
+
 bool StepTooSmall(const Vec& dx, const Vec& x, double step_tol) {
   return InfNorm(dx) <= step_tol * (1.0 + InfNorm(x));
 }

@@ -37,6 +37,9 @@ bool UseJacobian(const Vec& x, const SpMat& jacobian, SolverSummary* summary);
 
 // " at iteration k", for messages (built only when a solve ends).
 std::string At(int iteration);
+// "singular Jacobian" when the linear solver found the Jacobian singular, otherwise "linear solve
+// failed" (out of memory, a backend error: its message says which).
+std::string LinearFailure(const LinearSolver& solver);
 
 // True when a step dx taken from x is too small to change x: ||dx||_inf <= step_tol (1 +
 // ||x||_inf).

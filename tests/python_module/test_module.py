@@ -94,6 +94,24 @@ def test_compare_returns_one_outcome_per_formulation_and_start(tmp_path, monkeyp
     pd.testing.assert_frame_equal(result.runs, from_cli)
 
 
+def test_a_problem_set_returns_one_row_per_problem_formulation_and_start(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "fclib")
+    files = ",".join(os.path.join(data, f) for f in ("CubeH8.hdf5", "Capsules-i125-1213.hdf5"))
+    result = cb.compare(problem_dir=files, set={"friction": "ignore"},
+                        formulations=["active-set", "siconos-lemke"])
+    assert os.listdir(tmp_path) == []
+    assert result.runs is None
+    # CubeH8 cold; Capsules cold and from its one guess.
+    assert len(result.problems) == 6
+    assert set(result.problems["start"]) == {"cold", "guess:1"}
+    status, out = cli(tmp_path, "compare", "--problem-dir", files, "--set", "friction=ignore",
+                      "--formulations", "active-set,siconos-lemke")
+    assert status == result.status
+    from_cli = cb._read_table(str(out / "problems.csv"))
+    pd.testing.assert_frame_equal(without_time(result.problems), without_time(from_cli))
+
+
 def test_bad_options_are_refused_with_the_option_named():
     with pytest.raises(cb.UsageError, match="--steps"):
         cb.run(formulation="implicit-fb", problem="arch-flat", steps=-1)

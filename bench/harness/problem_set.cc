@@ -1,0 +1,263 @@
+#include "harness/problem_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "formulations/petsc_dist/petsc_dist.h"
+#include "formulations/registry.h"
+#include "harness/cli.h"
+#include "harness/compare_table.h"
+#include "harness/interrupt.h"
+#include "harness/memory_budget.h"
+#include "harness/records.h"
+#include "io/fclib_file.h"
+#include "path/path.h"
+#include "problems/problem_path.h"
+#include "verdict/natural_map_error.h"
+
+namespace cb::harness {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> SplitItems(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    if (comma > start) items.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
+// A directory's FCLIB files, sorted by name so that the records come in the same order on
+// every machine.
+std::vector<std::string> FclibFilesIn(const std::string& dir) {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_regular_file() && io::IsFclibPath(entry.path().string())) {
+      files.push_back(entry.path().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) {
+    throw InputError("--problem-dir: '" + dir + "' holds no FCLIB file (.hdf5, .h5)");
+  }
+  return files;
+}
+
+// The run's arguments for one file of the set: --problem-file F with the set's --set.
+RunArguments FileArguments(const RunArguments& a, const std::string& file) {
+  RunArguments one = a;
+  one.problem_dir.clear();
+  one.problem_file = file;
+  return one;
+}
+
+// Fixed-load solves only: a problem traced by arc length has no single answer to compare.
+Problem LoadSetProblem(const RunArguments& a, const std::string& file) {
+  Problem problem = LoadProblem(FileArguments(a, file));
+  if (problem.loading != LoadingKind::kFixedLoad) {
+    throw InputError("--problem-dir: " + file +
+                     ": traced by arc length; a problem set takes fixed-load problems");
+  }
+  return problem;
+}
+
+PathOptions SetPathOptions(const RunArguments& a, const Problem& problem, const State* guess) {
+  PathOptions options = DefaultPathOptions(problem);
+  options.tolerance = a.tolerance;
+  // Cold: the formulation's fixed start; a guess is a warm start from it (SolveFixedLoad).
+  options.start = guess != nullptr ? StartKind::kWarm : StartKind::kCold;
+  options.controls.time_limit_s = a.time_limit;
+  options.controls.interrupted = [] { return InterruptRequested(); };
+  options.solve_repeats = a.repeat;
+  return options;
+}
+
+// The starts of a problem: cold, then each of the file's guesses (FCLIB files only).
+struct SetStart {
+  std::string label;
+  std::optional<State> guess;
+};
+
+std::vector<SetStart> StartsOf(const std::string& file, const Problem& problem) {
+  std::vector<SetStart> starts{{"cold", std::nullopt}};
+  if (!io::IsFclibPath(file)) return starts;
+  const io::FclibAnswers answers = io::LoadFclibAnswers(file);
+  for (std::size_t k = 0; k < answers.guesses.size(); ++k) {
+    State guess = ZeroState(*problem.model);
+    guess.u = answers.guesses[k].u;
+    guess.r = answers.guesses[k].r;
+    starts.push_back({"guess:" + std::to_string(k + 1), guess});
+  }
+  return starts;
+}
+
+// Forwards to the run's recorder and keeps the solve's attempt for problems.csv.
+struct LastAttempt final : PathObserver {
+  explicit LastAttempt(RunRecorder* recorder) : recorder(recorder) {}
+  void OnAttempt(const StepAttempt& attempt) override {
+    recorder->OnAttempt(attempt);
+    last = attempt;
+  }
+  RunRecorder* recorder;
+  std::optional<StepAttempt> last;
+};
+
+// What the set's files and runs write, and the counts of run.json.
+struct SetOutput {
+  const RunArguments& a;
+  RecordFiles files;
+  RecordWriter<ProblemSetRow> rows;
+  std::vector<CompareTableRow> table;
+  RunJson* record;
+};
+
+// One formulation x start on one problem; false when the solve was interrupted.
+bool SolveOne(const std::string& file, const Problem& problem, Formulation& formulation,
+              const SetStart& start, SetOutput* out) {
+  const RunArguments& a = out->a;
+  const State* guess = start.guess ? &*start.guess : nullptr;
+  const PathOptions options = SetPathOptions(a, problem, guess);
+  const StepProblem step = FirstStep(problem, options);
+  const RunLabel label{problem.name,           formulation.name(), formulation.solver(),
+                       formulation.settings(), start.label,        "set"};
+  const std::string table_name = problem.name + " " + formulation.name();
+  std::string why;
+  if (!formulation.Accepts(step, &why)) {
+    out->rows.Write({label, file, problem, nullptr, std::nan(""), why, a.time_limit, a.tolerance});
+    out->table.push_back({table_name, start.label, "skipped", {}, {}});
+    return true;
+  }
+  RunRecorder recorder(&out->files, problem, label, 1);
+  LastAttempt observer(&recorder);
+  const PathSummary s = TraceProblem(problem, formulation, options, &observer, guess);
+  recorder.EndProgress();
+  if (s.status == Status::kStoppedByCaller) return false;
+  if (!observer.last) throw std::logic_error("a fixed-load solve without an attempt");
+  const StepAttempt& attempt = *observer.last;
+  out->rows.Write({label, file, problem, &attempt, NaturalMapError(step, attempt.result.point),
+                   attempt.result.message, a.time_limit, a.tolerance});
+  out->table.push_back({table_name, start.label, std::to_string(recorder.accepted()) + "/1",
+                        recorder.iterations(), recorder.solve_times_s()});
+  ++out->record->runs;
+  out->record->attempts += recorder.attempts();
+  out->record->accepted_steps += recorder.accepted();
+  out->record->repeat_disagreements += recorder.repeat_disagreements();
+  return true;
+}
+
+std::vector<std::unique_ptr<Formulation>> MakeFormulations(const RunArguments& a) {
+  std::vector<std::unique_ptr<Formulation>> formulations;
+  for (const auto& name : a.formulations)
+    formulations.push_back(MakeConfiguredFormulation(a, name));
+  return formulations;
+}
+
+// Every file loaded once before any work, its guesses too, so that a bad one is refused (exit
+// 2) with nothing run; the notes of each go to run.json, prefixed with its problem's name.
+void CheckFiles(const RunArguments& a, const std::vector<std::string>& files, RunJson* record) {
+  std::set<std::string> names;
+  for (const auto& file : files) {
+    const Problem problem = LoadSetProblem(a, file);
+    if (!names.insert(problem.name).second) {
+      throw InputError("--problem-dir: two problems named '" + problem.name +
+                       "' (the records tell problems apart by name)");
+    }
+    StartsOf(file, problem);
+    for (const auto& note : problem.notes)
+      record->problem_notes.push_back(problem.name + ": " + note);
+  }
+}
+
+int RunSet(const RunArguments& a, const std::vector<std::string>& files,
+           const std::vector<std::unique_ptr<Formulation>>& formulations,
+           const RecordTarget& target, RunJson* record, std::string* reason) {
+  SetOutput out{
+      a, RecordFiles(target), RecordWriter<ProblemSetRow>(target, ProblemSetSchema()), {}, record};
+  const Activity comparing("solving the problem set");
+  for (const auto& file : files) {
+    const Problem problem = LoadSetProblem(a, file);
+    for (const SetStart& start : StartsOf(file, problem)) {
+      for (const auto& formulation : formulations) {
+        if (!SolveOne(file, problem, *formulation, start, &out)) {
+          AcknowledgeInterrupt();
+          *reason = "interrupted during " + problem.name + " " + formulation->name();
+          return kExitInterrupted;
+        }
+      }
+    }
+  }
+  *reason = "every formulation was run on every problem (problems.csv holds each outcome)";
+  std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(out.table).c_str(),
+               target.memory != nullptr ? "memory" : target.directory.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+std::vector<std::string> ProblemSetFiles(const std::string& items) {
+  std::vector<std::string> files;
+  for (const auto& item : SplitItems(items)) {
+    std::error_code ec;
+    if (fs::is_directory(item, ec)) {
+      for (auto& file : FclibFilesIn(item)) files.push_back(std::move(file));
+    } else if (fs::is_regular_file(item, ec)) {
+      files.push_back(item);
+    } else {
+      throw InputError("--problem-dir: '" + item + "' is neither a directory nor a file");
+    }
+  }
+  if (files.empty()) throw InputError("--problem-dir: names no problem file");
+  std::set<std::string> seen;
+  for (const auto& file : files) {
+    if (!seen.insert(fs::weakly_canonical(file).string()).second) {
+      throw InputError("--problem-dir: '" + file + "' is named twice");
+    }
+  }
+  return files;
+}
+
+int ProblemSetCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
+  const std::vector<std::string> files = ProblemSetFiles(a.problem_dir);
+  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
+  const auto formulations = MakeFormulations(a);
+  CheckFiles(a, files, record);
+  record->problem = fs::path(files.front()).parent_path().filename().string();
+  record->problem_source = "--problem-dir " + a.problem_dir;
+  record->settings = a.settings;
+  record->tolerance = a.tolerance;
+  record->time_limit_s = a.time_limit;
+  for (const auto& f : formulations) record->formulations.push_back(f->name());
+  record->starts = {"cold", "guess:K"};
+  record->mode = "set";
+  record->repeat = a.repeat;
+  return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
+    return RunSet(a, files, formulations, target, record, reason);
+  });
+}
+
+std::optional<State> GuessStart(const RunArguments& a, const Problem& problem) {
+  if (a.start_guess <= 0) return std::nullopt;
+  if (a.problem_file.empty() || !io::IsFclibPath(a.problem_file)) {
+    throw InputError("--start guess:" + std::to_string(a.start_guess) +
+                     ": only for an FCLIB file (--problem-file F.hdf5) with /guesses");
+  }
+  const io::FclibAnswers answers = io::LoadFclibAnswers(a.problem_file);
+  if (static_cast<std::size_t>(a.start_guess) > answers.guesses.size()) {
+    throw InputError("--start guess:" + std::to_string(a.start_guess) + ": " + a.problem_file +
+                     " has " + std::to_string(answers.guesses.size()) + " guesses (/guesses)");
+  }
+  State guess = ZeroState(*problem.model);
+  guess.u = answers.guesses[static_cast<std::size_t>(a.start_guess) - 1].u;
+  guess.r = answers.guesses[static_cast<std::size_t>(a.start_guess) - 1].r;
+  return guess;
+}
+
+}  // namespace cb::harness
