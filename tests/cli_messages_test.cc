@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/median.h"
@@ -199,6 +200,42 @@ TEST(CompareTableTest, ColumnsAreAlignedAndASkippedRunHasNoMedians) {
             "formulation   start  success  median iterations  median time\n"
             "implicit-fb   warm   3/4      4                  3 ms\n"
             "ipopt-energy  cold   skipped  -                  -\n");
+}
+
+TEST(CliMessagesTest, TheSummaryLineCountsOnceAndNamesThePlotCommand) {
+  const auto dir = TempDir("summary");
+  const Outcome o = RunCli("run --problem two-bar --formulation implicit-fb --out " + dir.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  // "two-bar implicit-fb: path traced: N accepted steps, ... -> DIR", the count said once.
+  EXPECT_NE(o.output.find("two-bar implicit-fb: path traced: "), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("steps accepted"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("\nplot: contactbench plot " + dir.string() + "\n"), std::string::npos)
+      << o.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliMessagesTest, ListsTakeSpacesAfterTheirCommas) {
+  const auto dir = TempDir("spaces");
+  const Outcome o = RunCli(
+      "compare --problem two-bar --formulations 'implicit-fb, nonsmooth-fb' "
+      "--starts 'warm , cold' --out " +
+      dir.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const std::string runs = [&] {
+    std::ifstream in(dir / "runs.csv");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (const char* name : {"implicit-fb,", "nonsmooth-fb,", ",cold,", ",warm,"}) {
+    EXPECT_NE(runs.find(name), std::string::npos) << name << "\n" << runs;
+  }
+  // A blank item is still an empty name.
+  const Outcome blank = RunCli(
+      "compare --problem two-bar --formulations 'implicit-fb, ,nonsmooth-fb' "
+      "--out " +
+      dir.string());
+  EXPECT_EQ(blank.status, 2) << blank.output;
+  EXPECT_NE(blank.output.find("has an empty name"), std::string::npos) << blank.output;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -135,6 +135,19 @@ TEST(SolidHex8Test, PatchTestLinearFieldGivesExactStressResultants) {
   const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
   const double von_mises = std::sqrt(1.5 * dev.squaredNorm());
   for (double s : body.VonMisesStress(u)) EXPECT_NEAR(s, von_mises, 1e-9 * von_mises);
+  // The output fields: von_mises_stress, and the tensor `stress` (9 components, row by row)
+  // sigma itself in every cell.
+  const std::vector<CellField> fields = body.CellFields(u);
+  ASSERT_EQ(fields.size(), 2u);
+  EXPECT_EQ(fields[0].name, "von_mises_stress");
+  EXPECT_EQ(fields[1].name, "stress");
+  ASSERT_EQ(fields[1].components, 9);
+  ASSERT_EQ(fields[1].values.size(), 9 * body.Cells().size());
+  const double largest = sigma.cwiseAbs().maxCoeff();
+  for (std::size_t k = 0; k < fields[1].values.size(); ++k) {
+    const int i = static_cast<int>(k % 9) / 3, j = static_cast<int>(k % 3);
+    EXPECT_NEAR(fields[1].values[k], sigma(i, j), 1e-9 * largest) << k;
+  }
 }
 
 // The large-deformation patch test: a homogeneous deformation x = F X reproduces the constant

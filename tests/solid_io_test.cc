@@ -74,7 +74,7 @@ TEST(SolidIoTest, GmshHexahedralBlockRunsEndToEnd) {
   // the uniaxial stress.
   const std::string vtu = ReadAll(out / "vtk" / "hex-block_0000.vtu");
   EXPECT_NE(vtu.find(" 12 12 12 12"), std::string::npos);
-  const auto at = vtu.find("Name=\"von_mises\"");
+  const auto at = vtu.find("Name=\"von_mises_stress\"");
   ASSERT_NE(at, std::string::npos);
   double von_mises = 0.0;
   std::sscanf(vtu.c_str() + vtu.find('\n', at) + 1, "%lf", &von_mises);

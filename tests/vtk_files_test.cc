@@ -84,7 +84,7 @@ TEST(VtkFilesTest, TrussMemberForcesAreTheSeriesBarsAgainstTheWall) {
   EXPECT_NEAR(stress[1], n / 0.5, 1e-9);  // A = 0.5
 
   // The wall: the half-plane x > 1.01 drawn as its boundary line, past the body on both sides.
-  const std::string wall = Contents(dir / "vtk" / "truss-2d-bar-wall_obstacle_0.vtp");
+  const std::string wall = Contents(dir / "vtk" / "truss-2d-bar-wall_obstacles.vtp");
   std::vector<double> xyz;
   const std::string block = Element(Element(wall, "Points"), "DataArray");
   std::istringstream numbers(block.substr(block.find('>') + 1));
@@ -95,40 +95,47 @@ TEST(VtkFilesTest, TrussMemberForcesAreTheSeriesBarsAgainstTheWall) {
   EXPECT_LT(std::min(xyz[1], xyz[4]), 0.0);
   EXPECT_GT(std::max(xyz[1], xyz[4]), 0.0);
   EXPECT_NE(wall.find("NumberOfLines=\"1\""), std::string::npos);
-  // Its id, as VTK's ASCII string: the bytes of "wall", then 0.
-  EXPECT_NE(wall.find("Name=\"id\" NumberOfTuples=\"1\" format=\"ascii\">119 97 108 108 0<"),
+  // Its id, as VTK's ASCII string: the bytes of "wall", then 0; its line's obstacle index 0.
+  EXPECT_NE(wall.find("Name=\"id\" NumberOfTuples=\"1\" format=\"ascii\">119 97 108 108 0 <"),
             std::string::npos)
       << wall;
-  // The collection: the final state at its step with the wall as a block of its own.
-  EXPECT_NE(pvd.find("timestep=\"40\" group=\"\" part=\"0\" name=\"truss-2d-bar-wall\" "
-                     "file=\"truss-2d-bar-wall_0000.vtu\""),
+  EXPECT_EQ(ArrayValues(Element(wall, "CellData"), "obstacle"), std::vector<double>{0.0});
+  // The collection: the reference, then the final state, each with the obstacles as block 1.
+  EXPECT_NE(pvd.find("timestep=\"0\" group=\"\" part=\"0\" name=\"truss-2d-bar-wall\" "
+                     "file=\"truss-2d-bar-wall_reference.vtu\""),
             std::string::npos)
       << pvd;
-  EXPECT_NE(pvd.find("timestep=\"40\" group=\"\" part=\"1\" name=\"obstacle wall\" "
-                     "file=\"truss-2d-bar-wall_obstacle_0.vtp\""),
+  EXPECT_NE(pvd.find("part=\"0\" name=\"truss-2d-bar-wall\" file=\"truss-2d-bar-wall_0000.vtu\""),
+            std::string::npos)
+      << pvd;
+  EXPECT_NE(pvd.find("part=\"1\" name=\"obstacles\" file=\"truss-2d-bar-wall_obstacles.vtp\""),
             std::string::npos)
       << pvd;
   std::filesystem::remove_all(dir);
 }
 
-TEST(VtkFilesTest, TheCollectionsTimeIsTheStepAndOnlyTheNewRunsFilesAreThere) {
+TEST(VtkFilesTest, TheCollectionsTimeIsTheArcLengthAndOnlyTheNewRunsFilesAreThere) {
   const auto dir = RunExample("truss-2d-bar-wall.json", "vtk_steps", "--save-every 10");
-  // Saves at steps 10, 20, 30, 40 and the final state at 40, which replaces the save of 40.
+  // The reference at 0, then saves at steps 10, 20, 30, 40 and the final state at 40, which
+  // replaces the save of 40; each at the arc length of the steps before it (theta = 0.05 each
+  // here: steps.csv's arc_length), which, unlike lambda, grows along any path.
   const std::string pvd = Contents(dir / "vtk" / "truss-2d-bar-wall.pvd");
-  for (const char* time : {"\"10\"", "\"20\"", "\"30\"", "\"40\""}) {
-    EXPECT_NE(pvd.find(std::string("timestep=") + time + " group=\"\" part=\"0\""),
-              std::string::npos)
-        << time << "\n"
-        << pvd;
+  std::vector<double> times;
+  for (std::size_t at = pvd.find("timestep=\""); at != std::string::npos;
+       at = pvd.find("timestep=\"", at + 1)) {
+    times.push_back(std::stod(pvd.substr(at + 10)));
   }
-  std::size_t datasets = 0;
-  for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos;
-       at = pvd.find("<DataSet", at + 1)) {
-    ++datasets;
-  }
-  EXPECT_EQ(datasets, 8u);  // 4 times x (the body, the wall)
+  const std::vector<double> expected = {0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.5, 1.5, 2.0, 2.0};
+  ASSERT_EQ(times.size(), expected.size()) << pvd;  // 5 times x (the body, the obstacles)
+  for (std::size_t k = 0; k < times.size(); ++k) EXPECT_NEAR(times[k], expected[k], 1e-12) << k;
+  EXPECT_NE(pvd.find("truss-2d-bar-wall_reference.vtu"), std::string::npos);
   EXPECT_NE(pvd.find("truss-2d-bar-wall_0004.vtu"), std::string::npos);  // the final state
   EXPECT_EQ(pvd.find("truss-2d-bar-wall_0003.vtu"), std::string::npos);  // replaced by it
+  const std::string reference = Contents(dir / "vtk" / "truss-2d-bar-wall_reference.vtu");
+  EXPECT_EQ(ArrayValues(reference, "step"), std::vector<double>{0.0});
+  for (double u : ArrayValues(Element(reference, "PointData"), "displacement")) {
+    EXPECT_EQ(u, 0.0);
+  }
   const std::string grid = Contents(dir / "vtk" / "truss-2d-bar-wall_0001.vtu");
   EXPECT_EQ(ArrayValues(grid, "step"), std::vector<double>{20.0});
 
@@ -144,7 +151,8 @@ TEST(VtkFilesTest, TheCollectionsTimeIsTheStepAndOnlyTheNewRunsFilesAreThere) {
   }
   std::sort(files.begin(), files.end());
   EXPECT_EQ(files, (std::vector<std::string>{"q4-block-on-floor.pvd", "q4-block-on-floor_0000.vtu",
-                                             "q4-block-on-floor_obstacle_0.vtp"}));
+                                             "q4-block-on-floor_obstacles.vtp",
+                                             "q4-block-on-floor_reference.vtu"}));
   std::filesystem::remove_all(dir);
 }
 

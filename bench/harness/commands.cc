@@ -173,6 +173,7 @@ void DescribeArguments(const RunArguments& a, const Problem& problem, RunJson* r
   record->problem_source =
       a.problem_file.empty() ? "--problem " + a.problem : "--problem-file " + a.problem_file;
   record->problem_notes = problem.notes;
+  record->control = problem.control_label;
   record->settings = a.settings;
   record->tolerance = a.tolerance;
   record->time_limit_s = a.time_limit;
@@ -259,6 +260,25 @@ std::string SummaryCounts(const Problem& problem, const PathSummary& summary,
   return text;
 }
 
+// "<problem> <formulation>: <what happened> (<counts>) -> <where>", the counts once: a path
+// traced to its end says so in the counts alone; then, for records on disk, the command that
+// draws them.
+void PrintSummaryLine(const Problem& problem, const Formulation& formulation,
+                      const PathSummary& summary, const RunRecorder& recorder,
+                      const RecordTarget& target) {
+  const std::string counts = SummaryCounts(problem, summary, recorder);
+  const bool only_counts =
+      summary.status == Status::kConverged &&
+      summary.message == std::to_string(summary.accepted_steps) + " steps accepted";
+  const std::string what =
+      only_counts ? "path traced: " + counts : summary.message + " (" + counts + ")";
+  std::fprintf(stderr, "%s %s: %s -> %s\n", problem.name.c_str(), formulation.name().c_str(),
+               what.c_str(), Destination(target).c_str());
+  if (target.memory == nullptr) {
+    std::fprintf(stderr, "plot: contactbench plot %s\n", target.directory.c_str());
+  }
+}
+
 // The start a run's records name: warm, cold, near or guess:K.
 std::string StartLabel(const RunArguments& a) {
   if (a.start_guess > 0) return "guess:" + std::to_string(a.start_guess);
@@ -318,9 +338,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   record->kinks = summary.kinks;
   *reason = summary.message;
   recorder.EndProgress();
-  std::fprintf(stderr, "%s %s: %s (%s) -> %s\n", problem.name.c_str(), formulation.name().c_str(),
-               summary.message.c_str(), SummaryCounts(problem, summary, recorder).c_str(),
-               Destination(target).c_str());
+  PrintSummaryLine(problem, formulation, summary, recorder, target);
   if (summary.status == Status::kStoppedByCaller) return kExitInterrupted;
   if (summary.status != Status::kConverged) return kExitFailure;
   return kExitOk;

@@ -111,12 +111,16 @@ int NonNegativeInteger(const Option& option, const std::string& text) {
   return v;
 }
 
+// The comma-separated items of `text`, each without the blanks around it ("a, b" as "a,b": a
+// list typed with the spaces of prose); empty items are dropped.
 std::vector<std::string> SplitList(const std::string& text) {
   std::vector<std::string> items;
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = text.find(',', start);
-    const std::size_t end = comma == std::string::npos ? text.size() : comma;
+    std::size_t end = comma == std::string::npos ? text.size() : comma;
+    while (start < end && (text[start] == ' ' || text[start] == '\t')) ++start;
+    while (end > start && (text[end - 1] == ' ' || text[end - 1] == '\t')) --end;
     if (end > start) items.push_back(text.substr(start, end - start));
     if (comma == std::string::npos) break;
     start = comma + 1;

@@ -105,6 +105,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
   }
   if (!run.rerun_of.empty()) j["rerun_of"] = run.rerun_of;
   j["problem_notes"] = run.problem_notes;
+  j["control"] = OrNull(run.control);
   j["settings"] = run.settings;
   j["formulations"] = run.formulations;
   if (run.command == "compare") {

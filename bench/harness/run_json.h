@@ -20,11 +20,12 @@
 namespace cb::harness {
 
 struct RunJson {
-  std::vector<std::string> command_line;        // argv, the program's name first
-  std::string command;                          // "run" or "compare"
-  std::string problem;                          // the problem's name ("" if not loaded)
-  std::string problem_source;                   // "--problem NAME" or "--problem-file F"
-  std::vector<std::string> problem_notes;       // what reading the file changed (Problem::notes)
+  std::vector<std::string> command_line;   // argv, the program's name first
+  std::string command;                     // "run" or "compare"
+  std::string problem;                     // the problem's name ("" if not loaded)
+  std::string problem_source;              // "--problem NAME" or "--problem-file F"
+  std::vector<std::string> problem_notes;  // what reading the file changed (Problem::notes)
+  std::string control;  // what control_disp is: Problem::control_label ("" if none)
   std::map<std::string, std::string> settings;  // --set
   std::vector<std::string> formulations;
   std::string reference;  // compare: the reference formulation ("" for free mode)

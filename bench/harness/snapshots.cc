@@ -7,6 +7,7 @@
 
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "harness/interrupt.h"
+#include "harness/obstacle_patches.h"
 #include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/vtk_files.h"
@@ -37,34 +38,57 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
   WriteObstacles();
 }
 
-// Each obstacle's surface around the body's reference configuration, written once: obstacles
-// are rigid and fixed.
+// The obstacles, written once in one file: obstacles are rigid and fixed.
 void SnapshotWriter::WriteObstacles() {
-  const ElasticBody& body = problem_.body->body();
-  std::vector<Point> reference;
-  reference.reserve(body.num_nodes());
-  for (int n = 0; n < body.num_nodes(); ++n) reference.push_back(body.reference(n));
-  const Box around = BoxAround(reference);
   const auto& obstacles = problem_.body->obstacles();
-  for (std::size_t k = 0; k < obstacles.size(); ++k) {
-    const std::string file = problem_.name + "_obstacle_" + std::to_string(k) + ".vtp";
-    const std::string id = ObstacleId(problem_, static_cast<int>(k));
-    WriteSurfaceVtp(directory_ + "/vtk/" + file, ObstacleSurface(*obstacles[k], around), id);
-    obstacles_.push_back({file, id});
+  if (!obstacles.empty()) {
+    std::vector<std::string> ids;
+    for (std::size_t k = 0; k < obstacles.size(); ++k) {
+      ids.push_back(ObstacleId(problem_, static_cast<int>(k)));
+    }
+    obstacles_file_ = problem_.name + "_obstacles.vtp";
+    WriteObstaclesVtp(directory_ + "/vtk/" + obstacles_file_, DrawnObstacles(*problem_.body), ids);
   }
 }
 
+// The unloaded reference configuration (u = 0, lambda = 0, step 0), the first time of the
+// collection, as the saved states are written (in pieces with their index in a distributed run).
+void SnapshotWriter::WriteReference() {
+  const State zero = ZeroState(*problem_.model);
+  const std::string stem = problem_.name + "_reference";
+  if (processes_ == 1) {
+    reference_file_ = WriteBody(stem, zero, 0);
+    return;
+  }
+  std::string file;
+  OnEveryProcess("saving the reference state", [&] { file = WritePieces(stem, zero, 0); });
+  OnEveryProcess("indexing the reference state", [&] {  // once every piece is whole
+    if (process_ == 0) WriteIndex(stem, zero);
+  });
+  reference_file_ = file;
+}
+
 void SnapshotWriter::OnAttempt(const StepAttempt& a) {
+  if (a.accepted) {
+    arc_length_ += a.arc_length;
+    last_theta_ = a.arc_length;
+  }
   if (a.accepted && every_ > 0 && a.step % every_ == 0) Save(a.state, a.step, "step");
 }
 
 void SnapshotWriter::OnCriticalPoint(const CriticalPointRecord& c) {
   if (c.kind == CriticalPointRecord::Kind::kStabilityChange) return;
-  SaveAt(c.state, c.step, ToString(c.kind), c.step - 0.5);  // between steps step - 1 and step
+  // Between steps step - 1 and step: half way along the step's arc.
+  SaveAt(c.state, c.step, ToString(c.kind), CollectionTime(c.state, 0.5 * last_theta_));
+}
+
+double SnapshotWriter::CollectionTime(const State& state, double back) const {
+  return arc_length_ > 0.0 ? arc_length_ - back : state.lambda;
 }
 
 void SnapshotWriter::SaveAt(const State& state, int step, const std::string& label, double time) {
   if (!problem_.body) return;
+  if (reference_file_.empty()) WriteReference();
   char number[32];
   std::snprintf(number, sizeof number, "_%04d", static_cast<int>(saved_.size()));
   const std::string stem = problem_.name + number;
@@ -91,10 +115,9 @@ void SnapshotWriter::SaveAt(const State& state, int step, const std::string& lab
 }
 
 void SnapshotWriter::WriteIndex(const std::string& stem, const State& state) const {
-  std::vector<std::string> cell_fields;  // the names, which an element-less body has too
-  for (const CellField& f : problem_.body->body().Restricted({})->CellFields(state.u)) {
-    cell_fields.push_back(f.name);
-  }
+  // The names and components, which an element-less body has too.
+  const std::vector<CellField> cell_fields =
+      problem_.body->body().Restricted({})->CellFields(state.u);
   std::vector<std::string> pieces;
   pieces.reserve(static_cast<std::size_t>(processes_));
   for (int p = 0; p < processes_; ++p) pieces.push_back(PieceFile(stem, p));
@@ -131,16 +154,20 @@ void SnapshotWriter::WriteCollection() const {
   std::map<double, const Saved*> at_time;  // a later save at a time replaces an earlier one
   for (const Saved& saved : saved_) at_time[saved.time] = &saved;
   std::vector<PvdDataSet> datasets;
+  const auto add = [&](double time, const std::string& file, const std::string& comment) {
+    datasets.push_back({time, 0, problem_.name, file, comment});
+    if (!obstacles_file_.empty()) {
+      datasets.push_back({time, 1, "obstacles", obstacles_file_, ""});
+    }
+  };
+  if (!reference_file_.empty() && !at_time.contains(0.0)) {
+    add(0.0, reference_file_, "the reference configuration, lambda 0");
+  }
   for (const auto& [time, saved] : at_time) {
     char lambda[32];
     std::snprintf(lambda, sizeof lambda, "%.17g", saved->lambda);
-    datasets.push_back(
-        {time, 0, problem_.name, saved->file,
-         "step " + std::to_string(saved->step) + ", " + saved->label + ", lambda " + lambda});
-    for (std::size_t k = 0; k < obstacles_.size(); ++k) {
-      datasets.push_back(
-          {time, static_cast<int>(k) + 1, "obstacle " + obstacles_[k].id, obstacles_[k].file, ""});
-    }
+    add(time, saved->file,
+        "step " + std::to_string(saved->step) + ", " + saved->label + ", lambda " + lambda);
   }
   WritePvd(directory_ + "/vtk/" + problem_.name + ".pvd", datasets);
 }

@@ -2,12 +2,15 @@
 // (limit and bifurcation points) and the final state, as long-format CSV (DIR/snapshots.csv,
 // one row per node and saved state; DIR/snapshot_contacts.csv, one row per pair and saved
 // state) and as VTK files that open in ParaView (vtk_files.h): DIR/vtk/<problem>_NNNN.vtu, one
-// per saved state, with the elements' quantities as cell data; DIR/vtk/<problem>_obstacle_K.vtp,
-// one per obstacle; and DIR/vtk/<problem>.pvd, the collection, rewritten after each save so
-// that an interrupted run leaves a valid one. The collection's time is the step: a state saved
-// at step k is at time k, a critical point found between steps k - 1 and k at k - 1/2 (a later
-// save at the same time replaces an earlier one in it, as the final state replaces the regular
-// save of the last step); the obstacles are blocks of their own at every time. DIR/cells.csv
+// per saved state, with the elements' quantities as cell data; DIR/vtk/<problem>_reference.vtu,
+// the unloaded reference configuration; DIR/vtk/<problem>_obstacles.vtp, every obstacle in one
+// poly data set (obstacle_patches.h, the cell array `obstacle`); and DIR/vtk/<problem>.pvd, the
+// collection, rewritten after each save so that an interrupted run leaves a valid one. The
+// collection's time is the arc length traced to a state (lambda on a fixed-load path): the
+// reference at 0, a state saved after step k at the arc length of steps 1..k, a critical point
+// found within step k half way along that step (a later save at the same time replaces an
+// earlier one in it, as the final state replaces the regular save of the last step); each .vtu
+// holds its step and lambda as field data; the obstacles are block 1 at every time. DIR/cells.csv
 // lists the elements (cell, corner, node). The CSV columns are those of record_schemas.h.
 //
 // In a distributed run of several processes (petsc_dist.h) every process keeps a writer and
@@ -40,7 +43,7 @@ class SnapshotWriter final : public PathObserver {
 
   // Saves `state`, reached at step `step`, with a label ("step", "final", ...).
   void Save(const State& state, int step, const std::string& label) {
-    SaveAt(state, step, label, step);
+    SaveAt(state, step, label, CollectionTime(state, 0.0));
   }
 
   int saved() const { return static_cast<int>(saved_.size()); }
@@ -53,10 +56,9 @@ class SnapshotWriter final : public PathObserver {
     double lambda;
     double time;  // in the collection
   };
-  struct ObstacleFile {
-    std::string file;  // relative to DIR/vtk
-    std::string id;
-  };
+  // The time of a state in the collection: the arc length traced to it (`back` less), or, on
+  // a fixed-load path (no arc), its lambda.
+  double CollectionTime(const State& state, double back) const;
   void SaveAt(const State& state, int step, const std::string& label, double time);
   void WriteRows(const State& state, int step, const std::string& label);
   // The body at `state` as file `stem`.vtu, or in pieces with `stem`.pvtu; returns its file.
@@ -64,6 +66,7 @@ class SnapshotWriter final : public PathObserver {
   std::string WritePieces(const std::string& stem, const State& state, int step);
   void WriteIndex(const std::string& stem, const State& state) const;
   void WriteObstacles();
+  void WriteReference();
   void WriteCollection() const;
 
   std::string directory_;
@@ -73,7 +76,10 @@ class SnapshotWriter final : public PathObserver {
   std::unique_ptr<RecordWriter<NodeRow>> nodes_;
   std::unique_ptr<RecordWriter<PairRow>> contacts_;
   std::vector<Saved> saved_;
-  std::vector<ObstacleFile> obstacles_;
+  std::string obstacles_file_;  // relative to DIR/vtk; empty: no obstacle
+  std::string reference_file_;  // likewise; empty: not yet written
+  double arc_length_ = 0.0;     // of the accepted steps so far
+  double last_theta_ = 0.0;     // of the last accepted step
 };
 
 // Forwards every observation to several observers, in order.

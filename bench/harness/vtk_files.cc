@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <numeric>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "core/csv.h"
 #include "core/owned_file.h"
@@ -100,6 +102,21 @@ struct GridSelection {
   const BodyPiece* piece;
 };
 
+// The NumberOfComponents attribute of an array of `components` (none for 1).
+std::string Components(int components) {
+  return components == 1 ? "" : " NumberOfComponents=\"" + std::to_string(components) + "\"";
+}
+
+// The attributes that make the first scalar field and the first tensor ParaView's defaults.
+std::string ActiveArrays(const std::vector<CellField>& fields) {
+  std::string scalars, tensors;
+  for (const CellField& f : fields) {
+    if (f.components == 1 && scalars.empty()) scalars = " Scalars=\"" + XmlEscaped(f.name) + "\"";
+    if (f.components == 9 && tensors.empty()) tensors = " Tensors=\"" + XmlEscaped(f.name) + "\"";
+  }
+  return scalars + tensors;
+}
+
 void WriteIndices(std::ostringstream& out, const char* name, const std::vector<int>& indices) {
   out << "        <DataArray type=\"Int64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
   for (int i : indices) out << ' ' << i;
@@ -177,11 +194,10 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
   out << "      </PointData>\n";
   const std::vector<CellField> fields =
       whole ? body.CellFields(state.u) : body.Restricted(grid.cells)->CellFields(state.u);
-  out << "      <CellData"
-      << (fields.empty() ? "" : " Scalars=\"" + XmlEscaped(fields.front().name) + "\"") << ">\n";
+  out << "      <CellData" << ActiveArrays(fields) << ">\n";
   for (const CellField& field : fields) {
-    out << "        <DataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name)
-        << "\" format=\"ascii\">\n         ";
+    out << "        <DataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name) << "\""
+        << Components(field.components) << " format=\"ascii\">\n         ";
     for (double v : field.values) out << ' ' << v;
     out << "\n        </DataArray>\n";
   }
@@ -206,7 +222,7 @@ void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const St
   WriteGrid(path, problem, state, step, {piece.nodes, piece.cells, &piece});
 }
 
-void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+void WriteBodyPvtu(const std::string& path, const std::vector<CellField>& cell_fields,
                    const std::vector<std::string>& pieces) {
   std::ostringstream out = Open();
   out << "<?xml version=\"1.0\"?>\n"
@@ -218,11 +234,10 @@ void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell
       << "      <PDataArray type=\"Int64\" Name=\"global_point\"/>\n"
       << "      <PDataArray type=\"UInt8\" Name=\"vtkGhostType\"/>\n"
       << "    </PPointData>\n"
-      << "    <PCellData"
-      << (cell_fields.empty() ? "" : " Scalars=\"" + XmlEscaped(cell_fields.front()) + "\"")
-      << ">\n";
-  for (const std::string& name : cell_fields) {
-    out << "      <PDataArray type=\"Float64\" Name=\"" << XmlEscaped(name) << "\"/>\n";
+      << "    <PCellData" << ActiveArrays(cell_fields) << ">\n";
+  for (const CellField& field : cell_fields) {
+    out << "      <PDataArray type=\"Float64\" Name=\"" << XmlEscaped(field.name) << "\""
+        << Components(field.components) << "/>\n";
   }
   out << "      <PDataArray type=\"Int64\" Name=\"global_cell\"/>\n"
       << "    </PCellData>\n"
@@ -236,38 +251,83 @@ void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell
   WriteWhole(out, path);
 }
 
-void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
-                     const std::string& id) {
+namespace {
+
+// The surfaces as one: their points and cells appended in turn, and the surface each line and
+// each polygon comes from (in VTK's cell order: every line, then every polygon).
+struct MergedSurfaces {
+  SurfaceGeometry all;
+  std::vector<int> line_of, polygon_of;
+};
+
+MergedSurfaces Merged(const std::vector<SurfaceGeometry>& surfaces) {
+  MergedSurfaces m;
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const int offset = static_cast<int>(m.all.points.size());
+    const SurfaceGeometry& s = surfaces[k];
+    m.all.points.insert(m.all.points.end(), s.points.begin(), s.points.end());
+    for (const auto& [cells, of, into] :
+         {std::tuple(&s.lines, &m.line_of, &m.all.lines),
+          std::tuple(&s.polygons, &m.polygon_of, &m.all.polygons)}) {
+      for (std::vector<int> cell : *cells) {
+        for (int& point : cell) point += offset;
+        into->push_back(std::move(cell));
+        of->push_back(static_cast<int>(k));
+      }
+    }
+  }
+  return m;
+}
+
+// VTK's ASCII strings: the byte values of each, each string ended by a 0.
+void WriteStrings(std::ostringstream& out, const std::vector<std::string>& strings) {
+  for (const std::string& text : strings) {
+    for (unsigned char c : text) out << static_cast<int>(c) << ' ';
+    out << "0 ";
+  }
+}
+
+}  // namespace
+
+void WriteObstaclesVtp(const std::string& path, const std::vector<SurfaceGeometry>& surfaces,
+                       const std::vector<std::string>& ids) {
+  const MergedSurfaces m = Merged(surfaces);
   std::ostringstream out = Open();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PolyData>\n"
       << "    <FieldData>\n"
-      << "      <Array type=\"String\" Name=\"id\" NumberOfTuples=\"1\" format=\"ascii\">";
-  // VTK's ASCII strings are byte values, each string ended by a 0.
-  for (unsigned char c : id) out << static_cast<int>(c) << ' ';
-  out << "0</Array>\n"
+      << "      <Array type=\"String\" Name=\"id\" NumberOfTuples=\"" << ids.size()
+      << "\" format=\"ascii\">";
+  WriteStrings(out, ids);
+  out << "</Array>\n"
       << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << surface.points.size() << "\" NumberOfVerts=\"0\" "
-      << "NumberOfLines=\"" << surface.lines.size() << "\" NumberOfStrips=\"0\" "
-      << "NumberOfPolys=\"" << surface.polygons.size() << "\">\n"
+      << "    <Piece NumberOfPoints=\"" << m.all.points.size() << "\" NumberOfVerts=\"0\" "
+      << "NumberOfLines=\"" << m.all.lines.size() << "\" NumberOfStrips=\"0\" "
+      << "NumberOfPolys=\"" << m.all.polygons.size() << "\">\n"
       << "      <Points>\n"
       << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Point3& p : surface.points) {
+  for (const Point3& p : m.all.points) {
     out << "          " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   out << "        </DataArray>\n      </Points>\n";
-  if (!surface.lines.empty()) {
+  if (!m.all.lines.empty()) {
     out << "      <Lines>\n";
-    WriteConnectivity(out, surface.lines);
+    WriteConnectivity(out, m.all.lines);
     out << "      </Lines>\n";
   }
-  if (!surface.polygons.empty()) {
+  if (!m.all.polygons.empty()) {
     out << "      <Polys>\n";
-    WriteConnectivity(out, surface.polygons);
+    WriteConnectivity(out, m.all.polygons);
     out << "      </Polys>\n";
   }
-  out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  out << "      <CellData Scalars=\"obstacle\">\n"
+      << "        <DataArray type=\"Int32\" Name=\"obstacle\" format=\"ascii\">\n         ";
+  for (const std::vector<int>* of : {&m.line_of, &m.polygon_of}) {
+    for (int k : *of) out << ' ' << k;
+  }
+  out << "\n        </DataArray>\n      </CellData>\n"
+      << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
   WriteWhole(out, path);
 }
 

@@ -40,12 +40,14 @@ void WriteBodyPieceVtu(const std::string& path, const Problem& problem, const St
 
 // The parallel index (.pvtu, VTK's PUnstructuredGrid) of the pieces `pieces` (paths relative to
 // it) that WriteBodyPieceVtu wrote, whose cell data are `cell_fields`.
-void WriteBodyPvtu(const std::string& path, const std::vector<std::string>& cell_fields,
+void WriteBodyPvtu(const std::string& path, const std::vector<CellField>& cell_fields,
                    const std::vector<std::string>& pieces);
 
-// An obstacle's surface, its id as field data.
-void WriteSurfaceVtp(const std::string& path, const SurfaceGeometry& surface,
-                     const std::string& id);
+// The obstacles of a problem as one poly data set: each surface's points and cells appended in
+// turn, the cell array `obstacle` the index of the surface a cell belongs to, and the field data
+// `id` the obstacles' ids (one string per obstacle, in the order of `surfaces`).
+void WriteObstaclesVtp(const std::string& path, const std::vector<SurfaceGeometry>& surfaces,
+                       const std::vector<std::string>& ids);
 
 // One dataset of a collection: at time `timestep`, block `part` (named `name`), from `file`
 // (relative to the .pvd); `comment` is written beside it.

@@ -36,7 +36,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.patches import Patch  # noqa: E402
 
-from plotlib import histograms, quick  # noqa: E402
+from plotlib import histograms, quick, styles  # noqa: E402
 
 SHIFT = 10.0
 # Times enter the shifted means in milliseconds, so the shift is 10 ms. The shifted mean lies
@@ -353,8 +353,8 @@ STYLE = {"warm": "-", "cold": "--"}
 
 
 def _colours(formulations):
-    cmap = plt.get_cmap("tab10")
-    return {f: cmap(i % 10) for i, f in enumerate(formulations)}
+    """The fixed colour of each formulation (plotlib/styles.py), the same in every figure."""
+    return styles.colours(formulations)
 
 
 def plot_profiles(name, title, runs, steps, path):
@@ -378,7 +378,9 @@ def plot_profiles(name, title, runs, steps, path):
             f, start = col.rsplit(" (", 1)
             start = start.rstrip(")")
             ax.step(taus, rho, where="post", color=colours[f], linestyle=STYLE.get(start, ":"),
-                    label=f"{col}: {solved[col]:.0%} solved", linewidth=1.8)
+                    label=f"{col}: {solved[col]:.0%} solved", linewidth=1.8,
+                    marker=styles.style(f)["marker"], markevery=(0.05, 0.2), markersize=5,
+                    markerfacecolor=styles.style(f)["markerfacecolor"])
             any_line = any_line or rho.max() > 0
         ax.set_xscale("log", base=2)
         ax.set_ylim(-0.02, 1.02)
@@ -480,16 +482,15 @@ def plot_scaling(scaling, path):
         return False
     fig, axes = plt.subplots(1, 2, figsize=(13, 5))
     formulations = list(dict.fromkeys(scaling["formulation"]))
-    colours = _colours(formulations)
     for f in formulations:
         g = ok[ok["formulation"] == f].sort_values("d")
         if g.empty:
             continue
         k = growth_exponent(g["d"], g["seconds"])
         lab = f"{f} (slope {k:.2f})" if k == k else f
-        axes[0].loglog(g["d"], g["seconds"], "o-", color=colours[f], label=lab)
+        axes[0].loglog(g["d"], g["seconds"], "-", label=lab, **styles.style(f))
         if "peak_rss_mb" in g:
-            axes[1].loglog(g["d"], g["peak_rss_mb"], "o-", color=colours[f], label=f)
+            axes[1].loglog(g["d"], g["peak_rss_mb"], "-", label=f, **styles.style(f))
     axes[0].set_xlabel("d, degrees of freedom (P1 with n x n elements, d = 2 (n + 1)^2)")
     axes[0].set_ylabel("wall time of the cold solve [s]")
     axes[0].set_title("Time of one P1 cold solve (slope: fitted exponent of d)")
@@ -545,10 +546,8 @@ def set_section(name, runs, steps, figures_dir, results_dir):
                    f"{fmt(r['median_time_ms'])} ({fmt(r['min_time_ms'])}-"
                    f"{fmt(r['max_time_ms'])}) | {fmt(r['median_iterations'], 'g')} | "
                    f"{fmt(r['total_time_s'])} |")
-    for _, s in skipped.iterrows():
-        out.append(f"| {s['formulation']} | {s['start']} | skipped: {s['message']} "
-                   "| | | | | | | | |")
     out.append("")
+    out += skipped_line(skipped)
 
     gain = warm_gain(table)
     if len(gain):
@@ -680,6 +679,21 @@ def scaling_section(results_dir, figures_dir):
     if plot_scaling(s, fig):
         out += [f"![Scaling of the P1 cold solve]({os.path.relpath(fig, results_dir)})", ""]
     return out
+
+
+def skipped_line(skipped):
+    """The skipped runs of a set as one line below its table: the formulations (starts
+    merged) with, for each distinct reason, the reason once (the formulation's own name in it
+    written as "it"), instead of a table row per formulation x start repeating it."""
+    if skipped is None or not len(skipped):
+        return []
+    by_reason = {}
+    for f, g in skipped.groupby("formulation", sort=False):
+        message = str(g["message"].iloc[0])
+        reason = message.replace(f + " ", "", 1) if message.startswith(f + " ") else message
+        by_reason.setdefault(reason, []).append(f)
+    parts = [f"{', '.join(fs)} - {reason}" for reason, fs in by_reason.items()]
+    return ["Skipped: " + "; ".join(parts) + ".", ""]
 
 
 def short_reason(message):

@@ -45,3 +45,31 @@ def draw(ax, obstacles, three_d=False, label="obstacles", colour=COLOUR):
             ax.plot(*(xyz[:, :3].T if three_d else xyz[:, :2].T), color=colour, lw=1.4,
                     gid=GID, label=label)
             label = None
+
+
+def faces(obstacles):
+    """Every closed polyline of the obstacles (their polygons) as an array of points each."""
+    return [points[line[:-1]] for _, points, lines in obstacles for line in lines
+            if len(line) > 3 and line[0] == line[-1]]
+
+
+def draw_3d(ax, obstacles, low, high, colour=COLOUR):
+    """The obstacles' faces that reach into the window [low, high] as one Poly3DCollection
+    (an obstacle of many planes is one artist, not one per plane), the points outside the window
+    pulled onto its sides so that a large surface does not set the axes; open polylines as one
+    Line3DCollection. Returns the artists added."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+    inside = [np.clip(f, low, high) for f in faces(obstacles)
+              if np.all(f.max(axis=0) >= low) and np.all(f.min(axis=0) <= high)]
+    open_lines = [np.clip(points[line], low, high) for _, points, lines in obstacles
+                  for line in lines if not (len(line) > 3 and line[0] == line[-1])]
+    added = []
+    if inside:
+        polys = Poly3DCollection(inside, facecolors=colour, edgecolors="none", alpha=0.25)
+        polys.set_gid(GID)
+        added.append(ax.add_collection3d(polys) or polys)
+    if open_lines:
+        lines = Line3DCollection(open_lines, colors=colour, linewidths=1.0)
+        lines.set_gid(GID)
+        added.append(ax.add_collection3d(lines) or lines)
+    return added

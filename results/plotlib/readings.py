@@ -390,26 +390,51 @@ def _invariance_table(results_dir, index, lines):
     return found
 
 
-def _figure(results_dir, index, measured, distances, sweep):
-    """P2's paths of every reading with B marked, P3's distance to Table 2 per reading at both
-    stopping tests, and the default's 2-iteration steps over the stopping tests of the sweep."""
-    fig, (paths, table_2, table_1) = plt.subplots(
-        1, 3, figsize=(16, 4.8), gridspec_kw={"width_ratios": [3, 2, 2]})
-    colours = plt.get_cmap("tab20").colors  # more readings than the default cycle's 10 colours
-    for i, (row, run) in enumerate(_runs(results_dir, index, "arch-flat", "newton")):
-        acc = rep._accepted(run)
-        line, = paths.plot(acc["control_disp"], acc["lambda"], lw=1.0, label=row["reading"],
-                           color=colours[i % len(colours)])
-        b = measured.get(row["reading"], {}).get("B")
+def _small_multiples(fig, cell, runs, measured):
+    """P2's paths, a panel per reading (11 overlaid lines could not be told apart): the
+    reading's path in blue over all the others in grey, its point B marked (square: at a kink,
+    circle: smooth); shared axes, labelled on the outer panels only."""
+    paths = [(row["reading"], rep._accepted(run)) for row, run in runs]
+    if not paths:
+        return
+    columns = 4 if len(paths) > 6 else min(3, len(paths))
+    rows = -(-len(paths) // columns)
+    grid = cell.subgridspec(rows, columns, hspace=0.5, wspace=0.08)
+    first = None
+    for k, (reading, acc) in enumerate(paths):
+        ax = fig.add_subplot(grid[k // columns, k % columns], sharex=first, sharey=first)
+        first = first or ax
+        for _, other in paths:
+            ax.plot(other["control_disp"], other["lambda"], color="0.82", lw=0.6)
+        ax.plot(acc["control_disp"], acc["lambda"], color="tab:blue", lw=1.1)
+        b = measured.get(reading, {}).get("B")
         if b is not None:
-            paths.plot(b["control_disp"], b["lambda"], "s" if b["nonsmooth"] else "o",
-                       color=line.get_color(), ms=6, mfc="none", mew=1.5)
-    paths.set_xlabel("x-displacement of node (a) [m]")
-    paths.set_ylabel("load parameter lambda [-]")
-    paths.set_title("P2 (Newton) per reading; B marked (square: at a kink, circle: smooth)",
-                    fontsize=9)
-    paths.grid(True, alpha=0.3)
-    paths.legend(fontsize=7)
+            ax.plot(b["control_disp"], b["lambda"], "s" if b["nonsmooth"] else "o",
+                    color="tab:red", ms=5, mfc="none", mew=1.3)
+        ax.set_title(reading, fontsize=7, pad=2)
+        ax.tick_params(labelsize=6)
+        ax.grid(True, alpha=0.3)
+        if k % columns:
+            ax.tick_params(labelleft=False)
+        else:
+            ax.set_ylabel("lambda [-]", fontsize=7)
+        if k + columns < len(paths):
+            ax.tick_params(labelbottom=False)
+        else:
+            ax.set_xlabel("u_x of node (a) [m]", fontsize=7)
+    fig.text(0.06, 0.95, "P2 (Newton), a panel per reading: its path (blue) over the others "
+             "(grey), B marked (square: at a kink, circle: smooth)", fontsize=9)
+
+
+def _figure(results_dir, index, measured, distances, sweep):
+    """P2's path of each reading in a small panel of its own (the others in grey behind it, B
+    marked), P3's distance to Table 2 per reading at both stopping tests, and the default's
+    2-iteration steps over the stopping tests of the sweep."""
+    fig = plt.figure(figsize=(18, 7))
+    outer = fig.add_gridspec(1, 3, width_ratios=[3.4, 2, 2], wspace=0.3)
+    _small_multiples(fig, outer[0], list(_runs(results_dir, index, "arch-flat", "newton")),
+                     measured)
+    table_2, table_1 = fig.add_subplot(outer[1]), fig.add_subplot(outer[2])
     names = list(distances)
     xs = np.arange(len(names))
     table_2.bar(xs - 0.2, [distances[r][0] for r in names], 0.4,

@@ -367,7 +367,7 @@ def _draw_obstacles_around_mesh(ax, drawn, margin=0.15):
     """The obstacles, seen through a window around the mesh (its extent and `margin` of its
     larger side each way): an obstacle's geometry may reach far beyond the body (a half-plane's
     line, a large disc) and would otherwise shrink the mesh to a speck."""
-    box = ax.dataLim
+    box = ax.dataLim.frozen()  # a copy: drawing the obstacles grows ax.dataLim itself
     pad = margin * max(box.width, box.height)
     obstacles.draw(ax, drawn, colour=OBSTACLE_COLOUR)
     ax.set_xlim(box.x0 - pad, box.x1 + pad)

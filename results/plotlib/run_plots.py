@@ -23,13 +23,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.collections import LineCollection  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Line3DCollection  # noqa: E402
 
-from plotlib import comparison, obstacles  # noqa: E402
+from plotlib import comparison, obstacles, styles  # noqa: E402
 
 RECORDS = ["steps", "iterations", "kinks", "critical", "snapshots", "snapshot_contacts",
            "cells", "runs"]
 CRITICAL_MARKER = {"limit": ("v", "tab:red"), "bifurcation": ("D", "tab:purple"),
                    "stability_change": ("s", "tab:brown")}
+# The legend's words for critical.csv's kinds.
+CRITICAL_WORDS = {"limit": "limit points", "bifurcation": "bifurcation points",
+                  "stability_change": "changes of stability"}
 
 
 def _read_csv(path):
@@ -74,10 +78,18 @@ def is_comparison(records):
 
 
 def _groups(steps):
-    """(label, rows) per formulation x start, in the order they appear."""
+    """(label, rows, style) per formulation x start, in the order they appear: the style the
+    formulation's fixed colour and marker (plotlib/styles.py), dashed for a cold start."""
     keys = list(dict.fromkeys(zip(steps["formulation"], steps["start"])))
     return [(comparison.solver_label(f, s),
-             steps[(steps["formulation"] == f) & (steps["start"] == s)]) for f, s in keys]
+             steps[(steps["formulation"] == f) & (steps["start"] == s)],
+             dict(styles.style(f), linestyle="--" if s == "cold" else "-")) for f, s in keys]
+
+
+def control_label(records):
+    """What control_disp is, from run.json's `control` (the problem's label, with its unit)."""
+    control = records["run"].get("control")
+    return control if control else "control displacement (in the problem's length unit)"
 
 
 def _save(fig, path):
@@ -101,11 +113,12 @@ def plot_path(records, path):
     state; kinks (x) and critical points marked."""
     steps = records["steps"]
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    for label, g in _groups(steps):
+    for label, g, style in _groups(steps):
         accepted = g[g["accepted"].astype(bool)].sort_values("step")
         x = np.concatenate([[0.0], accepted["control_disp"].to_numpy(dtype=float)])
         y = np.concatenate([[0.0], accepted["lambda"].to_numpy(dtype=float)])
-        ax.plot(x, y, ".-", markersize=3, linewidth=1.2, label=label)
+        ax.plot(x, y, markersize=3, linewidth=1.2, label=label,
+                markevery=max(1, len(x) // 20), **style)
     kinks = records["kinks"]
     if kinks is not None and len(kinks):
         ok = kinks[kinks["verified"].astype(bool)]
@@ -116,8 +129,9 @@ def plot_path(records, path):
         for kind, g in critical.groupby("kind"):
             marker, colour = CRITICAL_MARKER.get(kind, ("o", "tab:gray"))
             ax.plot(g["control_disp"], g["lambda"], marker, color=colour, markersize=8,
-                    markerfacecolor="none", markeredgewidth=1.6, label=f"{kind} ({len(g)})")
-    ax.set_xlabel("control displacement")
+                    markerfacecolor="none", markeredgewidth=1.6,
+                    label=f"{CRITICAL_WORDS.get(kind, kind)} ({len(g)})")
+    ax.set_xlabel(control_label(records))
     ax.set_ylabel("load parameter lambda")
     ax.set_title(f"{_problem(records)}: the path")
     ax.grid(True, alpha=0.3)
@@ -127,62 +141,205 @@ def plot_path(records, path):
 
 # --- the deformed shapes ---------------------------------------------------------------------
 
+# The edges of each element kind by its corners (VTK/Gmsh corner order): a hexahedron's twelve
+# (0-3 one face, 4-7 the other), a tetrahedron's six, a polygon's ring, a member's one.
+HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+             (0, 4), (1, 5), (2, 6), (3, 7)]
+TET_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+
+
+def element_edges(corners, dim):
+    """The corner pairs joined by an edge in an element of `corners` corners in `dim` D."""
+    if corners == 8:
+        return HEX_EDGES
+    if corners == 4 and dim == 3:
+        return TET_EDGES
+    if corners == 2:
+        return [(0, 1)]
+    return [(k, (k + 1) % corners) for k in range(corners)]
+
+
 def _state_segments(nodes, cells, dims):
-    """The element edges of one saved state in the deformed configuration."""
+    """The element edges of one saved state in the deformed configuration, an array
+    (edges x 2 x len(dims)): each element's edges in turn (element_edges), the elements of one
+    kind together, in the order of their ids."""
     xyz = nodes[dims].to_numpy(dtype=float) + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
-    moved = dict(zip(nodes["node"].astype(int), xyz))
-    segments = []
-    for _, corners in cells.sort_values(["cell", "corner"]).groupby("cell"):
-        ids = list(corners["node"])
-        ring = ids if len(ids) == 2 else ids + ids[:1]
-        segments += [(moved[a], moved[b]) for a, b in zip(ring, ring[1:])]
-    return segments
+    point = pd.Series(np.arange(len(nodes)), index=nodes["node"].astype(int).to_numpy())
+    ordered = cells.sort_values(["cell", "corner"])
+    size = ordered.groupby("cell")["corner"].transform("size")
+    parts = []
+    for corners, kind in ordered.groupby(size, sort=True):
+        ids = point.loc[kind["node"].astype(int).to_numpy()].to_numpy().reshape(-1, corners)
+        edges = np.array(element_edges(corners, len(dims)))
+        ends = np.stack([xyz[ids[:, edges[:, 0]]], xyz[ids[:, edges[:, 1]]]], axis=2)
+        parts.append(ends.reshape(-1, 2, len(dims)))
+    return np.concatenate(parts) if parts else np.zeros((0, 2, len(dims)))
+
+
+# A hexahedron's six faces (corner order as HEX_EDGES).
+HEX_FACES = [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+
+
+def outer_edges(cells):
+    """The node pairs (n x 2, ascending) of the edges on a solid's outer surface: the edges of
+    the hexahedra's faces that belong to one hexahedron only, each once. What a 3-D figure
+    draws: the inner edges of a mesh only hide its surface and the contact patch."""
+    ordered = cells.sort_values(["cell", "corner"])
+    hexes = ordered.groupby("cell").filter(lambda c: len(c) == 8) if len(ordered) else ordered
+    ids = hexes["node"].astype(int).to_numpy().reshape(-1, 8)
+    faces = np.concatenate([ids[:, list(f)] for f in HEX_FACES])
+    key = np.sort(faces, axis=1)
+    _, first, count = np.unique(key, axis=0, return_index=True, return_counts=True)
+    outer = faces[first[count == 1]]
+    pairs = np.concatenate([outer[:, [k, (k + 1) % 4]] for k in range(4)])
+    return np.unique(np.sort(pairs, axis=1), axis=0)
+
+
+def _outer_segments(nodes, edges, dims, scale=1.0):
+    """The segments of `edges` (node pairs) with the nodes moved by `scale` times u."""
+    n = nodes.set_index(nodes["node"].astype(int))
+    xyz = n[dims].to_numpy(dtype=float) + scale * n[["u" + c for c in dims]].to_numpy(dtype=float)
+    point = pd.Series(np.arange(len(n)), index=n.index)
+    at = point.loc[edges.ravel()].to_numpy().reshape(-1, 2)
+    return np.stack([xyz[at[:, 0]], xyz[at[:, 1]]], axis=1)
+
+
+def display_scale(nodes, dims):
+    """The factor the displacements of a 3-D figure are drawn with: 1 when the largest is at
+    least 2 % of the body's size, else the factor that makes it 5 % (a Hertz contact's
+    indentation is invisible to scale)."""
+    size = float((nodes[dims].max() - nodes[dims].min()).max())
+    largest = float(np.sqrt((nodes[["u" + c for c in dims]] ** 2).sum(axis=1)).max())
+    if largest <= 0.0 or largest >= 0.02 * size:
+        return 1.0
+    return float(f"{0.05 * size / largest:.1g}")
+
+
+def _distinct_states(snapshots):
+    """(step, label) of the saved states to draw: one per step (the last label saved there,
+    so that the final state replaces the regular save of its step), at most 5 evenly spread
+    with the last one kept."""
+    saved = list(dict.fromkeys(zip(snapshots["step"], snapshots["label"])))
+    last = {step: label for step, label in saved}
+    saved = [(step, label) for step, label in saved if last[step] == label]
+    saved = list(dict.fromkeys(saved))
+    if len(saved) > 5:
+        saved = [saved[int(round(i))] for i in np.linspace(0, len(saved) - 1, 5)]
+    return saved
+
+
+def _body_box(nodes, dims, margin=0.15):
+    """(low, high) around the body's reference and deformed nodes, `margin` of each side each
+    way (at least a twentieth of the largest side): the window of a panel (obstacles may reach
+    far beyond the body)."""
+    reference = nodes[dims].to_numpy(dtype=float)
+    moved = reference + nodes[["u" + c for c in dims]].to_numpy(dtype=float)
+    both = np.vstack([reference, moved])
+    low, high = both.min(axis=0), both.max(axis=0)
+    side = high - low
+    pad = np.maximum(margin * side, 0.05 * max(float(side.max()), 1e-12))
+    return low - pad, high + pad
+
+
+def _contact_points(contacts, nodes, dims, step, label):
+    if contacts is None:
+        return None
+    c = contacts[(contacts["step"] == step) & (contacts["label"] == label)]
+    closed = nodes[nodes["node"].isin(c[c["r"] < 0]["node"])]
+    if not len(closed):
+        return None
+    return [closed[d] + closed["u" + d] for d in dims]
+
+
+def _panel_2d(ax, nodes, cells, dims, drawn, contacts, step, label):
+    reference = nodes.assign(**{"u" + c: 0.0 for c in dims})
+    ax.add_collection(LineCollection(_state_segments(reference, cells, dims), color="0.75",
+                                     lw=0.6, label="reference"))
+    ax.add_collection(LineCollection(_state_segments(nodes, cells, dims), color="tab:blue",
+                                     lw=1.0, label="deformed"))
+    obstacles.draw(ax, drawn)
+    closed = _contact_points(contacts, nodes, dims, step, label)
+    if closed is not None:
+        ax.plot(*closed, "o", color="tab:orange", markersize=3, linestyle="none",
+                label="nodes in contact")
+    low, high = _body_box(nodes, dims)
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel("x (the problem's length unit)")
+    ax.set_ylabel("y")
+
+
+def _panel_3d(ax, nodes, edges, dims, drawn, closed, colour):
+    """One state of a solid: the edges of its outer surface as one collection, the obstacles'
+    faces inside the window as another, the nodes in contact marked; the window is the body's."""
+    low, high = _body_box(nodes, dims)
+    ax.add_collection3d(Line3DCollection(_outer_segments(nodes, edges, dims), colors=colour,
+                                         linewidths=0.5))
+    obstacles.draw_3d(ax, drawn, low, high)
+    if closed is not None:
+        ax.plot(*closed, "o", color="tab:orange", markersize=2, linestyle="none")
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    ax.set_zlim(low[2], high[2])
+    ax.set_box_aspect(high - low)
+    ax.view_init(elev=-25, azim=-60)  # from below: the contact face and its patch
+    for axis, name in zip("xyz", dims):
+        getattr(ax, f"set_{axis}label")(name, fontsize=8)
+    ax.tick_params(labelsize=6)
 
 
 def plot_deformed(records, path):
-    """One panel per saved state (at most 6: evenly spread, the final state last); the mesh in
-    its reference (grey) and deformed (colour) configurations, pairs in contact marked, and the
-    obstacles. False when the run saved no state of a body."""
+    """One panel per distinct saved state (at most 5, the final state last). 2-D: the mesh in
+    its reference (grey) and deformed (blue) configurations over each other; 3-D: the reference
+    configuration in a panel of its own (grey) first, then the deformed ones (blue), each drawn
+    by its elements' edges. The obstacles in red, the nodes in contact in orange; every window
+    framed on the body. None when the run saved no state of a body."""
     snapshots, cells = records["snapshots"], records["cells"]
     if snapshots is None or cells is None or not len(snapshots):
         return None
     dims = ["x", "y", "z"] if "z" in snapshots else ["x", "y"]
-    saved = list(dict.fromkeys(zip(snapshots["step"], snapshots["label"])))
-    if len(saved) > 6:
-        saved = [saved[int(round(i))] for i in np.linspace(0, len(saved) - 1, 6)]
-    drawn = obstacles.read(records["dir"])
-    columns = min(3, len(saved))
-    rows = -(-len(saved) // columns)
     three_d = len(dims) == 3
-    fig = plt.figure(figsize=(5.5 * columns, 4.2 * rows))
+    saved = _distinct_states(snapshots)
+    panels = ([None] if three_d else []) + saved  # None: the reference configuration
+    drawn = obstacles.read(records["dir"])
+    low, high = _body_box(snapshots, dims)
+    wide = (high[0] - low[0]) / max(high[1] - low[1], 1e-12)  # a flat arch: 15 to 1
+    if not three_d and wide > 3.0:  # one wide panel a row: at 3 a row the body is a line
+        columns, panel = 1, (14.0, min(4.2, max(1.6, 14.0 / wide + 0.9)))
+    else:
+        columns, panel = min(3, len(panels)), (5.5, 4.2)
+    rows = -(-len(panels) // columns)
+    fig = plt.figure(figsize=(panel[0] * columns, panel[1] * rows))
     contacts = records["snapshot_contacts"]
-    for k, (step, label) in enumerate(saved):
+    edges = outer_edges(cells) if three_d else None
+    scale = display_scale(snapshots, dims) if three_d else 1.0
+    for k, panel in enumerate(panels):
+        step, label = panel if panel is not None else saved[0]
         nodes = snapshots[(snapshots["step"] == step) & (snapshots["label"] == label)]
         ax = fig.add_subplot(rows, columns, k + 1, projection="3d" if three_d else None)
-        reference = nodes.assign(**{"u" + c: 0.0 for c in dims})
-        for state, style in ((reference, dict(color="0.75", lw=0.6)),
-                             (nodes, dict(color="tab:blue", lw=1.0))):
-            segments = _state_segments(state, cells, dims)
-            if three_d:
-                for a, b in segments:
-                    ax.plot(*zip(a, b), **style)
-            else:
-                ax.add_collection(LineCollection(segments, **style))
-        obstacles.draw(ax, drawn, three_d)
-        if contacts is not None:
-            c = contacts[(contacts["step"] == step) & (contacts["label"] == label)]
-            closed = nodes[nodes["node"].isin(c[c["r"] < 0]["node"])]
-            if len(closed):
-                xyz = [closed[d] + closed["u" + d] for d in dims]
-                ax.plot(*xyz, "o", color="tab:orange", markersize=3, linestyle="none")
+        if panel is None:
+            _panel_3d(ax, nodes.assign(**{"u" + c: 0.0 for c in dims}), edges, dims, drawn, None,
+                      "0.55")
+            ax.set_title("reference configuration", fontsize=9, y=1.1)
+            continue
+        if three_d:
+            shown = nodes.assign(**{"u" + c: scale * nodes["u" + c] for c in dims})
+            _panel_3d(ax, shown, edges, dims, drawn,
+                      _contact_points(contacts, shown, dims, step, label), "tab:blue")
+        else:
+            _panel_2d(ax, nodes, cells, dims, drawn, contacts, step, label)
         lam = float(nodes["lambda"].iloc[0])
-        ax.set_title(f"step {step} ({label}), lambda = {lam:.4g}", fontsize=9)
-        if not three_d:
-            ax.set_aspect("equal", adjustable="datalim")
-            ax.autoscale_view()
-    fig.suptitle(f"{_problem(records)}: deformed shapes (grey: reference, red: obstacles, "
-                 "orange: nodes in contact)")
-    fig.tight_layout()
+        ax.set_title(f"step {step} ({label}), lambda = {lam:.4g}", fontsize=9,
+                     y=1.1 if three_d else 1.0)
+    shown = "displacements to scale" if scale == 1.0 else f"displacements x {scale:g}"
+    if three_d:
+        key = "grey: reference, blue: deformed (outer surface)"
+    else:
+        key = "grey: reference, blue: deformed"
+    fig.suptitle(f"{_problem(records)}: deformed shapes ({key}, red: obstacles, orange: nodes "
+                 f"in contact; {shown})", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.4 / fig.get_figheight()))
     return _save(fig, path)
 
 
@@ -191,11 +348,11 @@ def plot_deformed(records, path):
 def plot_cost(records, path):
     """Iterations and wall time of every attempt against its step; failed attempts hollow."""
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
-    for label, g in _groups(records["steps"]):
+    for label, g, style in _groups(records["steps"]):
         ok = g["accepted"].astype(bool)
         for ax, column in ((top, "iterations"), (bottom, "time_s")):
-            line, = ax.plot(g[ok]["step"], g[ok][column], ".-", markersize=3, linewidth=0.8,
-                            label=label)
+            line, = ax.plot(g[ok]["step"], g[ok][column], markersize=3, linewidth=0.8,
+                            label=label, markevery=max(1, int(ok.sum()) // 20), **style)
             if (~ok).any():
                 ax.plot(g[~ok]["step"], g[~ok][column], "o", markerfacecolor="none",
                         color=line.get_color(), label=f"{label}: not accepted")
@@ -230,11 +387,11 @@ def plot_residual(records, path, step, chosen=True):
         raise ValueError(f"step {step} has no iteration in iterations.csv "
                          f"(steps {iterations['step'].min()}-{iterations['step'].max()})")
     fig, ax = plt.subplots(figsize=(8, 5))
-    for label, g in _groups(rows):
+    for label, g, style in _groups(rows):
         for attempt, a in g.groupby("attempt"):
             name = label if attempt == 0 else f"{label}, attempt {attempt}"
-            ax.semilogy(a["iteration"], a["residual_inf"].clip(lower=1e-300), "o-",
-                        markersize=3, label=name)
+            ax.semilogy(a["iteration"], a["residual_inf"].clip(lower=1e-300), markersize=3,
+                        label=name, **dict(style, alpha=1.0 if attempt == 0 else 0.5))
     ax.set_xlabel("iteration")
     ax.set_ylabel("norm_inf(F) of the formulation's system")
     ax.set_title(f"{_problem(records)}: residual history of step {step}")

@@ -37,10 +37,12 @@ class DofMap {
 };
 
 // A quantity of the elements at a state, for output: its name (as VTK files and plots label
-// it) and one value per element, in the order of ElasticBody::Cells().
+// it) and `components` values per element (a tensor's 9, row by row), element after element in
+// the order of ElasticBody::Cells().
 struct CellField {
   std::string name;
   std::vector<double> values;
+  int components = 1;
 };
 
 class ElasticBody {

@@ -319,6 +319,7 @@ std::vector<CellField> PlaneStressQ4::CellFields(const Vec& u) const {
   const Eigen::Matrix3d d = ElasticityMatrix(material_) / material_.thickness;
   CellField sxx{"stress_xx", {}}, syy{"stress_yy", {}}, sxy{"stress_xy", {}};
   CellField mises{"von_mises_stress", {}};
+  CellField tensor{"stress", {}, 9};  // the plane stress state as a 3-D tensor (z row 0)
   for (const Element& e : elements_) {
     Eigen::Matrix<double, 4, 2> xy;
     Eigen::Matrix<double, 8, 1> ue;
@@ -335,10 +336,12 @@ std::vector<CellField> PlaneStressQ4::CellFields(const Vec& u) const {
     sxx.values.push_back(sigma[0]);
     syy.values.push_back(sigma[1]);
     sxy.values.push_back(sigma[2]);
+    tensor.values.insert(tensor.values.end(),
+                         {sigma[0], sigma[2], 0.0, sigma[2], sigma[1], 0.0, 0.0, 0.0, 0.0});
     mises.values.push_back(std::sqrt(sigma[0] * sigma[0] - sigma[0] * sigma[1] +
                                      sigma[1] * sigma[1] + 3.0 * sigma[2] * sigma[2]));
   }
-  return {sxx, syy, sxy, mises};
+  return {sxx, syy, sxy, mises, tensor};
 }
 
 }  // namespace cb

@@ -370,7 +370,17 @@ std::vector<std::vector<int>> SolidHex8::Cells() const {
 }
 
 std::vector<CellField> SolidHex8::CellFields(const Vec& u) const {
-  return {{"von_mises", VonMisesStress(u)}};
+  CellField tensor{"stress", {}, 9};
+  CellField mises{"von_mises_stress", {}};
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  for (const Eigen::Matrix3d& sigma : CauchyStress(u)) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) tensor.values.push_back(sigma(i, j));
+    }
+    const Eigen::Matrix3d dev = sigma - (sigma.trace() / 3.0) * identity;
+    mises.values.push_back(std::sqrt(1.5 * dev.squaredNorm()));
+  }
+  return {mises, tensor};
 }
 
 // A dead traction t on the bilinear face x(xi, eta) = sum_a N_a x_a: the consistent nodal
@@ -410,8 +420,18 @@ void SolidHex8::AddFaceTraction(const Face& face, const Point& traction, Vec* lo
 }
 
 std::vector<double> SolidHex8::VonMisesStress(const Vec& u) const {
-  CheckSize(u, num_dofs(), "VonMisesStress");
   std::vector<double> out;
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  for (const Eigen::Matrix3d& sigma : CauchyStress(u)) {
+    const Eigen::Matrix3d dev = sigma - (sigma.trace() / 3.0) * identity;
+    out.push_back(std::sqrt(1.5 * dev.squaredNorm()));
+  }
+  return out;
+}
+
+std::vector<Eigen::Matrix3d> SolidHex8::CauchyStress(const Vec& u) const {
+  CheckSize(u, num_dofs(), "CauchyStress");
+  std::vector<Eigen::Matrix3d> out;
   out.reserve(elements_.size());
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
   for (std::size_t e = 0; e < elements_.size(); ++e) {
@@ -432,8 +452,7 @@ std::vector<double> SolidHex8::VonMisesStress(const Vec& u) const {
                lame_lambda_ * std::log(j) * identity) /
               j;
     }
-    const Eigen::Matrix3d dev = sigma - (sigma.trace() / 3.0) * identity;
-    out.push_back(std::sqrt(1.5 * dev.squaredNorm()));
+    out.push_back(sigma);
   }
   return out;
 }

@@ -55,7 +55,8 @@ class SolidHex8 final : public ElasticBody {
 
   std::vector<std::vector<int>> Cells() const override;
   std::shared_ptr<const ElasticBody> Restricted(const std::vector<int>& elements) const override;
-  // "von_mises": VonMisesStress(u).
+  // "stress": CauchyStress(u), 9 components; "von_mises_stress": VonMisesStress(u) (the names
+  // of the 2-D elements' fields).
   std::vector<CellField> CellFields(const Vec& u) const override;
   const std::vector<Element>& elements() const { return elements_; }
   const SolidMaterial& material() const { return material_; }
@@ -68,6 +69,8 @@ class SolidHex8 final : public ElasticBody {
   // Per element, the von Mises equivalent of the Cauchy stress at the element centre (small
   // deformation: of the linear stress; the two agree to first order).
   std::vector<double> VonMisesStress(const Vec& u) const;
+  // Per element, the Cauchy stress at the element centre, as VonMisesStress takes it.
+  std::vector<Eigen::Matrix3d> CauchyStress(const Vec& u) const;
 
  private:
   // The neo-Hookean elements' forces assembled into *force; with `magnitudes`, their entries'

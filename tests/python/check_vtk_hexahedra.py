@@ -8,8 +8,8 @@ for every .vtu of their .pvd collections: VTK reads it without an error; every c
 VTK_HEXAHEDRON (type 12); each hexahedron's corner order gives a positive Jacobian at all eight
 corners (vtkMeshQuality), in the reference and in the deformed configuration (the points moved
 by the `displacement` array); the point arrays `displacement` (3 components) and
-`contact_reaction` and the cell array `von_mises` are present with one tuple per point or cell,
-finite; and every data set a .pvd lists exists and reads, its timesteps non-decreasing.
+`contact_reaction` and the cell array `von_mises_stress` are present with one tuple per point or
+cell, finite; and every data set a .pvd lists exists and reads, its timesteps non-decreasing.
 
 Exit status 0 when every check holds, 1 when one fails (each failure printed), and 77 (ctest's
 SKIP_RETURN_CODE) when VTK's Python module is absent: Debian's python3-vtk9 provides it.
@@ -87,7 +87,7 @@ def check_grid(path, grid, failures):
         return
     arrays = [("point", grid.GetPointData(), grid.GetNumberOfPoints(), "displacement", 3),
               ("point", grid.GetPointData(), grid.GetNumberOfPoints(), "contact_reaction", None),
-              ("cell", grid.GetCellData(), grid.GetNumberOfCells(), "von_mises", 1)]
+              ("cell", grid.GetCellData(), grid.GetNumberOfCells(), "von_mises_stress", 1)]
     for kind, data, count, array_name, components in arrays:
         array = data.GetArray(array_name)
         if array is None:

@@ -185,5 +185,20 @@ class Targets(unittest.TestCase):
         self.assertIsNone(self.rows["peak memory of the P1 solve reported, linear in d"][1])
 
 
+class SkippedLine(unittest.TestCase):
+    def test_the_skipped_runs_of_a_set_are_one_line_each_reason_once(self):
+        skipped = pd.DataFrame({
+            "formulation": ["a", "a", "b", "b", "c"],
+            "start": ["warm", "cold", "warm", "cold", "warm"],
+            "message": ["a cannot express X", "a cannot express X", "b cannot express X",
+                        "b cannot express X", "no Ipopt in this build"]})
+        lines = c.skipped_line(skipped)
+        self.assertEqual(lines, ["Skipped: a, b - cannot express X; c - no Ipopt in this build.",
+                                 ""])
+
+    def test_nothing_skipped_no_line(self):
+        self.assertEqual(c.skipped_line(pd.DataFrame(columns=["formulation", "message"])), [])
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -7,9 +7,15 @@ import subprocess
 import sys
 import tempfile
 import unittest
+from unittest import mock
 
 import numpy as np
 import pandas as pd
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "results"))
@@ -95,6 +101,58 @@ class PlotRun(unittest.TestCase):
     def test_not_a_run_directory_is_refused(self):
         with self.assertRaises(ValueError):
             run_plots.read_run(self.tmp)
+
+
+@unittest.skipUnless(os.access(BINARY, os.X_OK), f"no suite driver at {BINARY}")
+class PlotSolid(unittest.TestCase):
+    """The deformed shapes of a small hertz-3d run (4 x 4 x 3 hexahedra)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="contactbench_plot_solid_")
+        cls.run_dir = os.path.join(cls.tmp, "run")
+        contactbench("run", "--problem", "hertz-3d", "--set", "n=4", "--set", "nz=3",
+                     "--formulation", "implicit-fb", "--out", cls.run_dir)
+        cls.records = run_plots.read_run(cls.run_dir)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def test_the_segments_are_each_hexahedrons_twelve_edges(self):
+        snap, cells = self.records["snapshots"], self.records["cells"]
+        final = snap[snap["label"] == "final"]
+        segments = run_plots._state_segments(final, cells, ["x", "y", "z"])
+        self.assertEqual(len(segments), 12 * cells["cell"].nunique())
+        # Each segment of the first hexahedron joins two corners that differ in one
+        # coordinate of the (axis-aligned) reference mesh: an edge, never a face diagonal.
+        reference = final.assign(ux=0.0, uy=0.0, uz=0.0)
+        first = run_plots._state_segments(reference, cells, ["x", "y", "z"])[:12]
+        for a, b in first:
+            self.assertEqual(int(np.sum(~np.isclose(a, b))), 1, (a, b))
+
+    def test_the_outer_edges_are_hexahedron_edges_on_the_surface(self):
+        cells = self.records["cells"]
+        ids = cells.sort_values(["cell", "corner"])["node"].to_numpy().reshape(-1, 8)
+        hex_edges = {tuple(sorted((h[a], h[b]))) for h in ids for a, b in run_plots.HEX_EDGES}
+        outer = {tuple(e) for e in run_plots.outer_edges(cells)}
+        self.assertTrue(outer <= hex_edges)
+        self.assertLess(len(outer), len(hex_edges))  # the inner edges are left out
+
+    def test_each_panel_is_two_collections_and_the_panels_differ(self):
+        figures = []
+        with mock.patch.object(run_plots, "_save", lambda fig, path: figures.append(fig)):
+            run_plots.plot_deformed(self.records, "deformed.png")
+        fig = figures[0]
+        self.addCleanup(plt.close, fig)
+        titles = [ax.get_title() for ax in fig.axes]
+        self.assertEqual(len(set(titles)), len(titles), titles)
+        self.assertEqual(titles[0], "reference configuration")
+        for ax in fig.axes:
+            # The mesh and the obstacles, one collection each; at most one line (contacts).
+            self.assertEqual(len(ax.collections), 2, ax.get_title())
+            self.assertLessEqual(len(ax.lines), 1)
+            self.assertEqual(ax.collections[1].get_gid(), obstacles.GID)
 
 
 class StateSegments(unittest.TestCase):

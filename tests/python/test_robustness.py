@@ -86,7 +86,7 @@ class Robustness(unittest.TestCase):
         self.assertIn("### P2 arch-flat", text)
         self.assertIn("theta = 0.1 (4 steps)", text)
         self.assertIn("| x | 100% (4/4), 3 / 3 | 100% (2/2), 5 / 5 |", text)
-        self.assertIn("| z | skipped: z cannot express", text)
+        self.assertIn("Skipped: z - cannot express", text)  # one line, not a row per set
         self.assertTrue(os.path.exists(os.path.join(figures, "robustness_success.png")))
 
     def test_no_records_no_section(self):
