@@ -194,12 +194,12 @@ TEST(CompareTableTest, MediansOfOddAndEvenCounts) {
 
 TEST(CompareTableTest, ColumnsAreAlignedAndASkippedRunHasNoMedians) {
   const std::string table = cb::harness::CompareTable(
-      {{"implicit-fb", "warm", "3/4", {2, 5, 3, 9}, {1e-3, 2e-3, 4e-3, 5e-3}},
+      {{"implicit-fb", "warm", "3/4", {2, 5, 3, 9}, {1e-3, 2e-3, 4e-3, 5e-3}, 0.5e-3, 6e-3},
        {"ipopt-energy", "cold", "skipped", {}, {}}});
   EXPECT_EQ(table,
-            "formulation   start  success  median iterations  median time\n"
-            "implicit-fb   warm   3/4      4                  3 ms\n"
-            "ipopt-energy  cold   skipped  -                  -\n");
+            "formulation   start  success  median iterations  median time  range\n"
+            "implicit-fb   warm   3/4      4                  3 ms         500 us - 6 ms\n"
+            "ipopt-energy  cold   skipped  -                  -            -\n");
 }
 
 TEST(CliMessagesTest, TheSummaryLineCountsOnceAndNamesThePlotCommand) {

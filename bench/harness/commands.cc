@@ -506,7 +506,8 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
       table.push_back(
           {formulation->name(), ToString(start),
            std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
-           recorder.iterations(), recorder.solve_times_s()});
+           recorder.iterations(), recorder.solve_times_s(), recorder.fastest_solve_s(),
+           recorder.slowest_solve_s()});
       WarnOfDisagreements(label, recorder);
       ++record->runs;
       record->repeat_disagreements += recorder.repeat_disagreements();

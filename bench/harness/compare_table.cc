@@ -26,16 +26,22 @@ std::string TimeCell(double seconds) {
   return Cell("%.3g s", seconds);
 }
 
+// The fastest and slowest solve, "-" when there was none.
+std::string RangeCell(double fastest, double slowest) {
+  if (std::isnan(fastest) || std::isnan(slowest)) return "-";
+  return TimeCell(fastest) + " - " + TimeCell(slowest);
+}
+
 }  // namespace
 
 std::string CompareTable(const std::vector<CompareTableRow>& rows) {
   std::vector<std::vector<std::string>> cells = {
-      {"formulation", "start", "success", "median iterations", "median time"}};
+      {"formulation", "start", "success", "median iterations", "median time", "range"}};
   for (const CompareTableRow& row : rows) {
     const double iterations =
         Median(std::vector<double>(row.iterations.begin(), row.iterations.end()));
     cells.push_back({row.formulation, row.start, row.outcome, Cell("%g", iterations),
-                     TimeCell(Median(row.solve_times))});
+                     TimeCell(Median(row.solve_times)), RangeCell(row.fastest_s, row.slowest_s)});
   }
   std::vector<std::size_t> width(cells.front().size(), 0);
   for (const auto& line : cells) {

@@ -145,7 +145,8 @@ bool SolveOne(const std::string& file, const Problem& problem, Formulation& form
   out->rows.Write({label, file, problem, &attempt, NaturalMapError(step, attempt.result.point),
                    attempt.result.message, a.time_limit, a.tolerance});
   out->table.push_back({table_name, start.label, std::to_string(recorder.accepted()) + "/1",
-                        recorder.iterations(), recorder.solve_times_s()});
+                        recorder.iterations(), recorder.solve_times_s(), recorder.fastest_solve_s(),
+                        recorder.slowest_solve_s()});
   ++out->record->runs;
   out->record->attempts += recorder.attempts();
   out->record->accepted_steps += recorder.accepted();

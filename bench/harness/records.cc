@@ -23,6 +23,9 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
   if (a.accepted) ++accepted_;
   iterations_.push_back(a.result.counts.iterations);
   solve_times_s_.push_back(a.result.time_s);
+  // NaN-safe: the first attempt's spread replaces the NaN start (a comparison with NaN is false).
+  if (!(fastest_solve_s_ <= a.result.time_min_s)) fastest_solve_s_ = a.result.time_min_s;
+  if (!(slowest_solve_s_ >= a.result.time_max_s)) slowest_solve_s_ = a.result.time_max_s;
   if (!a.result.repeats_disagreement.empty()) {
     if (first_disagreement_.empty()) {
       first_disagreement_ = "step " + std::to_string(a.step) + ", " + a.result.repeats_disagreement;

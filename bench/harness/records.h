@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,10 @@ class RunRecorder final : public PathObserver {
   // Per attempt, in order: the solver's iterations and the solve's wall time.
   const std::vector<int>& iterations() const { return iterations_; }
   const std::vector<double>& solve_times_s() const { return solve_times_s_; }
+  // The fastest and the slowest time taken by any solve, repetitions included (NaN before the
+  // first attempt).
+  double fastest_solve_s() const { return fastest_solve_s_; }
+  double slowest_solve_s() const { return slowest_solve_s_; }
   // Solves whose repetitions (compare --repeat) did not all give the first answer, and the
   // first of them ("step 3, repetition 2: 7 iterations, not 6"; "" when none).
   int repeat_disagreements() const { return repeat_disagreements_; }
@@ -70,6 +75,8 @@ class RunRecorder final : public PathObserver {
   int total_steps_ = 0;
   std::vector<int> iterations_;
   std::vector<double> solve_times_s_;
+  double fastest_solve_s_ = std::numeric_limits<double>::quiet_NaN();
+  double slowest_solve_s_ = std::numeric_limits<double>::quiet_NaN();
   int repeat_disagreements_ = 0;
   std::string first_disagreement_;
   ProgressLine progress_;  // on a terminal only
