@@ -9,6 +9,7 @@ cells.csv, parameters.csv: docs/records.md) and writes results_dir/REPORT.md and
 into results_dir/figures/reproduction/. Every published number of the report is set beside the
 suite's own; where they disagree the report says so.
 """
+import json
 import math
 import os
 
@@ -100,6 +101,35 @@ def classify(ratio, order, iterations, converged):
     return "fast linear (ratio %.2f)" % ratio
 
 
+def _load_at_start(run):
+    """The 1-minute load average at the start of a run (run.json), or None."""
+    try:
+        with open(os.path.join(run["dir"], "run.json")) as f:
+            return json.load(f)["load_average"]["start"]["1min"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _p1_timing(results_dir, run):
+    """What the table's times are: one solve each, the load, and the same solve repeated in the
+    comparison set block (median and range), when that set is there."""
+    load = _load_at_start(run)
+    text = "Times: one solve each (the iteration counts are the result; a time is one sample), " \
+        "load average (1 min) %s at the start." % ("%.2f" % load if load is not None
+                                                   else "not recorded")
+    steps = _read(os.path.join(results_dir, "compare", "block", "steps.csv"))
+    if steps is None or "time_min_s" not in steps:
+        return text
+    rows = steps[(steps["formulation"] == "implicit-fb") & (steps["start"] == "cold")]
+    if not len(rows):
+        return text
+    r = rows.iloc[-1]
+    return text + (" Their spread: the Newton solve of case 1, repeated %d times in the comparison "
+                   "set `block` (COMPARISON.md), took %.3g s (median; fastest %.3g s, slowest "
+                   "%.3g s)." % (r["time_samples"], r["time_s"], r["time_min_s"],
+                                 r["time_max_s"]))
+
+
 def p1(results_dir, lines):
     runs = {}
     for solver in ("dogleg", "newton"):
@@ -116,8 +146,8 @@ def p1(results_dir, lines):
                  "u0 = 0, g0 = -1, r0 = +1 (scaled)." % (_parameter(any_run, "num_dofs", "?"),
                                                          _parameter(any_run, "num_pairs", "?")))
     lines.append("")
-    table = ["| solver | eta case | start | iterations | time [s] | verified | last ratio "
-             "e_k+1/e_k | order estimate | behaviour at the end |",
+    table = ["| solver | eta case | start | iterations | time [s], one solve | verified | "
+             "last ratio e_k+1/e_k | order estimate | behaviour at the end |",
              "|---|---|---|---|---|---|---|---|---|"]
     behaviour = {}
     for solver in ("dogleg", "newton"):
@@ -152,6 +182,8 @@ def p1(results_dir, lines):
         lines.append("![P1 residual history, %s](%s)" % (solver, path))
         lines.append("")
     lines += table + [""]
+    lines.append(_p1_timing(results_dir, any_run))
+    lines.append("")
     lines.append("Rates are estimated from the recorded histories (iterations.csv): e_k = "
                  "sqrt(2 merit_k), over the iterates above %g (below it the residual is at the "
                  "rounding floor); the order estimate is log(e_k+1/e_k) / log(e_k/e_k-1) of the "
@@ -182,8 +214,9 @@ def p1(results_dir, lines):
                          else "DISAGREES: not far more"))
     if d["1"]:
         lines.append("- CPU time of case 1: the report 50.4 s (MATLAB fsolve, Core2 Duo 2.26 GHz); "
-                     "the suite %.3g s (C++, this machine; see results/COMPARISON.md for the "
-                     "machine)." % runs[("dogleg", "1")]["steps"].iloc[-1]["time_s"])
+                     "the suite %.3g s (C++, dogleg, one solve on this machine; the timing above "
+                     "gives the spread; see results/COMPARISON.md for the machine)."
+                     % runs[("dogleg", "1")]["steps"].iloc[-1]["time_s"])
     lines.append("")
     # The deformed configuration (report Figure 3), from case 1 with Newton.
     r = runs.get(("newton", "1")) or runs.get(("dogleg", "1"))
