@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_model_check.h"
 #include "elastic_body_check.h"
 #include "fd_check.h"
 #include "model/body_contact_model.h"
@@ -578,28 +579,7 @@ void CheckContactDerivatives(const BodyContactModel& model, unsigned seed) {
     const Vec u = RandomVec(model.num_dofs(), 0.2, &rng);
     const Vec r =
         -RandomVec(model.num_pairs(), 1.0, &rng).cwiseAbs() - Vec::Constant(model.num_pairs(), 0.1);
-    auto gaps = [&](const Vec& v) {
-      Vec phi;
-      model.Gaps(v, &phi);
-      return phi;
-    };
-    SpMat jac;
-    model.GapJacobian(u, &jac);
-    ASSERT_EQ(jac.rows(), model.num_pairs());
-    ASSERT_EQ(jac.cols(), model.num_dofs());
-    EXPECT_DERIVATIVE_NEAR(Dense(jac), FiniteDifferenceJacobian(gaps, u), kFdTol);
-    // d/du (grad phi(u)^T r) = sum_p r_p hess phi_p(u).
-    auto reaction_force = [&](const Vec& v) {
-      SpMat j;
-      model.GapJacobian(v, &j);
-      return Vec(j.transpose() * r);
-    };
-    SpMat curvature;
-    model.GapCurvature(u, r, &curvature);
-    ASSERT_EQ(curvature.rows(), model.num_dofs());
-    ASSERT_EQ(curvature.cols(), model.num_dofs());
-    EXPECT_GT(Dense(curvature).norm(), 0.0);
-    EXPECT_DERIVATIVE_NEAR(Dense(curvature), FiniteDifferenceJacobian(reaction_force, u), kFdTol);
+    fd_check::ExpectGapDerivativesMatch(model, u, r, kFdTol);
   }
 }
 
