@@ -39,8 +39,12 @@ void FeedBothReaders(const std::filesystem::path& file) {
   EXPECT_NO_THROW(fuzz::GmshInput(data, text.size()));
 }
 
+// A missing or emptied fuzz/regressions/ fails here rather than passing having read nothing.
 TEST(FuzzRegressionsTest, KeptCrashInputsAreRefusedOrRead) {
-  const auto files = FilesUnder(kRoot / "fuzz" / "regressions");
+  const std::filesystem::path dir = kRoot / "fuzz" / "regressions";
+  ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir << " is missing";
+  const auto files = FilesUnder(dir);
+  ASSERT_FALSE(files.empty()) << dir << " holds no kept input";
   for (const auto& file : files) FeedBothReaders(file);
   RecordProperty("inputs", static_cast<int>(files.size()));
 }

@@ -17,6 +17,7 @@
 #include "io/json_node.h"
 #include "io/problem_file.h"
 #include "path/path.h"
+#include "refusal.h"
 #include "source_tree.h"
 
 namespace cb {
@@ -255,220 +256,223 @@ struct BadCase {
   const char* base;                   // a valid document, or nullptr: `text` is the file
   std::function<void(json&)> mutate;  // applied to the base
   std::string text;                   // the file's text when base is nullptr
-  std::string expected;               // must appear in the message after "FILE: "
+  testing_support::Refusal expected;  // where the message points and what it names
 };
 
 std::vector<BadCase> BadCases() {
   return {
       {"malformed", nullptr, nullptr, "{\n  \"kind\": \"truss\",\n  \"nodes\": [1,, 2]\n}\n",
-       "line 3, column 15: malformed JSON"},
-      {"overflow", nullptr, nullptr, R"({"kind": "lcp", "M": [[1e999]], "q": [1]})", "1e999"},
+       testing_support::At("line 3, column 15")},
+      {"overflow", nullptr, nullptr, R"({"kind": "lcp", "M": [[1e999]], "q": [1]})",
+       testing_support::At("", {"1e999"})},
       {"overflow_pointer", nullptr, nullptr,
-       R"({"kind": "lcp", "M": [[1, 2], [3, 1e400]], "q": [1, 2]})", "/M/1/1: malformed JSON"},
+       R"({"kind": "lcp", "M": [[1, 2], [3, 1e400]], "q": [1, 2]})", testing_support::At("/M/1/1")},
       {"overflow_in_object", nullptr, nullptr,
        R"({"kind": "lcp", "scales": {"length": 1e400}, "M": [[1]], "q": [1]})",
-       "/scales/length: malformed JSON: number overflow parsing '1e400'"},
-      {"not_an_object", nullptr, nullptr, "[1, 2]", "/: a problem file is a JSON object"},
+       testing_support::At("/scales/length", {"'1e400'"})},
+      {"not_an_object", nullptr, nullptr, "[1, 2]", testing_support::At("/")},
       {"missing_field", kTruss, [](json& j) { j.erase("members"); }, "",
-       "/: missing field 'members'"},
-      {"unknown_field", kTruss, [](json& j) { j["memberz"] = 1; }, "", "/memberz: unknown field"},
+       testing_support::At("/", {"'members'"})},
+      {"unknown_field", kTruss, [](json& j) { j["memberz"] = 1; }, "",
+       testing_support::At("/memberz")},
       {"unknown_nested_field", kTruss, [](json& j) { j["members"][1]["Ee"] = 1; }, "",
-       "/members/1/Ee: unknown field (valid here: nodes, E, A)"},
+       testing_support::At("/members/1/Ee")},
       {"wrong_type", kTruss, [](json& j) { j["members"][0]["E"] = "100"; }, "",
-       "/members/0/E: expected a number, got a string"},
-      {"unknown_kind", kTruss, [](json& j) { j["kind"] = "frame"; }, "", "/kind: must be"},
-      {"bad_version", kTruss, [](json& j) { j["version"] = 2; }, "", "/version: only version 1"},
+       testing_support::At("/members/0/E")},
+      {"unknown_kind", kTruss, [](json& j) { j["kind"] = "frame"; }, "",
+       testing_support::At("/kind")},
+      {"bad_version", kTruss, [](json& j) { j["version"] = 2; }, "",
+       testing_support::At("/version")},
       {"bad_dimension", kTruss, [](json& j) { j["dimension"] = 4; }, "",
-       "/dimension: must be 2 or 3, got 4"},
+       testing_support::At("/dimension", {"4"})},
       {"short_vector", kTruss, [](json& j) { j["nodes"][0]["x"] = {0}; }, "",
-       "/nodes/0/x: expected 2 numbers, got 1"},
+       testing_support::At("/nodes/0/x", {"1"})},
       {"negative_E", kTruss, [](json& j) { j["members"][1]["E"] = -1; }, "",
-       "/members/1/E: must be > 0, got -1"},
+       testing_support::At("/members/1/E", {"-1"})},
       {"zero_A", kTruss, [](json& j) { j["members"][0]["A"] = 0; }, "",
-       "/members/0/A: must be > 0, got 0"},
+       testing_support::At("/members/0/A", {"0"})},
       {"zero_length_member", kTruss,
        [](json& j) {
          j["nodes"][1]["x"] = {0, 0};
        },
-       "", "/nodes/1: node 2 is at the same place as node 1 (/nodes/0)"},
+       "", testing_support::At("/nodes/1", {"/nodes/0", "node 2", "node 1"})},
       {"duplicated_node", kTruss,
        [](json& j) {
          j["nodes"].push_back({{"id", 9}, {"x", {0.5, 0}}});
        },
-       "", "/nodes/3: node 9 is at the same place as node 2 (/nodes/1)"},
+       "", testing_support::At("/nodes/3", {"/nodes/1", "node 9", "node 2"})},
       {"q4_edge_1e-300", kQ4,
        [](json& j) {
          j["nodes"][1]["x"] = {1e-300, 0};
        },
-       "", "/nodes/1: node 2 is at the same place as node 1"},
+       "", testing_support::At("/nodes/1", {"node 2", "node 1"})},
       {"q4_degenerate_element", kQ4,
        [](json& j) {
          j["nodes"][1]["x"] = {1e-9, 0};
        },
-       "", "/elements/0/nodes: degenerate: its side 0 has length 1e-09"},
+       "", testing_support::At("/elements/0/nodes", {"side 0"})},
       {"member_to_itself", kTruss,
        [](json& j) {
          j["members"][0]["nodes"] = {1, 1};
        },
-       "", "/members/0/nodes: a member joins node 1 to itself"},
+       "", testing_support::At("/members/0/nodes", {"node 1"})},
       {"duplicate_node_id", kTruss, [](json& j) { j["nodes"][2]["id"] = 1; }, "",
-       "/nodes/2/id: duplicate node id 1 (also /nodes/0)"},
+       testing_support::At("/nodes/2/id", {"/nodes/0", "1"})},
       {"unknown_node_id", kTruss, [](json& j) { j["members"][0]["nodes"][1] = 99; }, "",
-       "/members/0/nodes/1: unknown node id 99"},
+       testing_support::At("/members/0/nodes/1", {"99"})},
       {"dangling_node", kTruss,
        [](json& j) {
          j["nodes"].push_back({{"id", 4}, {"x", {2, 0}}});
        },
-       "", "/nodes/3: node 4 belongs to no member"},
+       "", testing_support::At("/nodes/3", {"node 4"})},
       {"pair_unknown_node", kTruss, [](json& j) { j["contact_pairs"][0]["node"] = 42; }, "",
-       "/contact_pairs/0/node: unknown node id 42"},
+       testing_support::At("/contact_pairs/0/node", {"42"})},
       {"pair_unknown_obstacle", kTruss,
        [](json& j) { j["contact_pairs"][0]["obstacle"] = "floor"; }, "",
-       "/contact_pairs/0/obstacle: unknown obstacle \"floor\" (defined: wall)"},
+       testing_support::At("/contact_pairs/0/obstacle", {"\"floor\""})},
       {"duplicate_pair", kTruss,
        [](json& j) { j["contact_pairs"].push_back(j["contact_pairs"][0]); }, "",
-       "/contact_pairs/1: node 3 is paired with obstacle \"wall\" twice"},
+       testing_support::At("/contact_pairs/1", {"\"wall\"", "node 3"})},
       {"pair_starts_inside", kTruss,
        [](json& j) {
          j["obstacles"][0]["point"] = {0.9, 0};
        },
-       "", "/contact_pairs/0: node 3 starts inside obstacle \"wall\""},
+       "", testing_support::At("/contact_pairs/0", {"\"wall\"", "node 3"})},
       {"zero_normal", kTruss,
        [](json& j) {
          j["obstacles"][0]["normal"] = {0, 0};
        },
-       "", "/obstacles/0/normal: must not be the zero vector"},
+       "", testing_support::At("/obstacles/0/normal")},
       {"bad_radius", kTruss,
        [](json& j) {
          j["obstacles"][0] = {{"id", "wall"}, {"type", "ball"}, {"centre", {3, 0}}, {"radius", -2}};
        },
-       "", "/obstacles/0/radius: must be > 0, got -2"},
+       "", testing_support::At("/obstacles/0/radius", {"-2"})},
       {"nothing_holds", kTruss,
        [](json& j) {
          j.erase("supports");
          j.erase("contact_pairs");
        },
-       "", "/: no supports and no contact pairs: nothing holds the body"},
+       "", testing_support::At("/")},
       {"supports_insufficient", kTruss,
        [](json& j) {
          j["supports"] = json::array({{{"node", 1}, {"fixed", {"x", "y"}}}});
          j.erase("contact_pairs");
        },
-       "", "/supports: the supports leave 1 rigid-body mode free (e.g. rotation about z)"},
+       "", testing_support::At("/supports")},
       {"pairs_insufficient", kTruss,
        [](json& j) {
          j["supports"] = json::array({{{"node", 2}, {"fixed", {"y"}}}});
        },
-       "", "/supports: neither the supports nor the contact pairs restrain 1 rigid-body mode"},
+       "", testing_support::At("/supports")},
       {"unknown_direction", kTruss,
        [](json& j) {
          j["supports"][0]["fixed"] = {"x", "w"};
        },
-       "", "/supports/0/fixed/1: unknown direction \"w\""},
+       "", testing_support::At("/supports/0/fixed/1", {"\"w\""})},
       {"load_on_support", kTruss,
        [](json& j) {
          j["loads"][0]["force"] = {1, 2};
        },
-       "", "/loads/0/force: a force in y on node 3, which is supported in y, would be lost"},
+       "", testing_support::At("/loads/0/force", {"node 3"})},
       {"bad_analysis", kTruss, [](json& j) { j["analysis"] = "dynamic"; }, "",
-       "/analysis: must be \"fixed-load\" or \"arc-length\""},
+       testing_support::At("/analysis", {"\"fixed-load\"", "\"arc-length\""})},
       {"zero_arc_length", kTruss, [](json& j) { j["arc_length"] = 0; }, "",
-       "/arc_length: must be > 0, got 0"},
+       testing_support::At("/arc_length", {"0"})},
       {"zero_steps", kTruss, [](json& j) { j["steps"] = 0; }, "",
-       "/steps: must be a positive integer, got 0"},
+       testing_support::At("/steps", {"0"})},
       {"fractional_steps", kTruss, [](json& j) { j["steps"] = 2.5; }, "",
-       "/steps: must be an integer, got 2.5"},
+       testing_support::At("/steps", {"2.5"})},
       {"load_with_arc_length", kTruss, [](json& j) { j["load"] = 1; }, "",
-       "/load: only with \"analysis\": \"fixed-load\""},
+       testing_support::At("/load", {"\"analysis\"", "\"fixed-load\""})},
       {"negative_scale", kTruss, [](json& j) { j["force_scale"] = -1; }, "",
-       "/force_scale: must be > 0, got -1"},
+       testing_support::At("/force_scale", {"-1"})},
       {"control_on_support", kTruss,
        [](json& j) {
          j["control"] = {{"node", 3}, {"direction", "y"}};
        },
-       "", "/control/direction: direction y of node 3 is supported"},
+       "", testing_support::At("/control/direction", {"node 3"})},
       {"zero_thickness", kQ4, [](json& j) { j["thickness"] = 0; }, "",
-       "/thickness: must be > 0, got 0"},
+       testing_support::At("/thickness", {"0"})},
       {"negative_E_q4", kQ4, [](json& j) { j["material"]["E"] = -5; }, "",
-       "/material/E: must be > 0, got -5"},
+       testing_support::At("/material/E", {"-5"})},
       {"nu_half", kQ4, [](json& j) { j["material"]["nu"] = 0.5; }, "",
-       "/material/nu: must be in (-1, 0.5), got 0.5"},
+       testing_support::At("/material/nu", {"0.5"})},
       {"nu_minus_one", kQ4, [](json& j) { j["material"]["nu"] = -1; }, "",
-       "/material/nu: must be in (-1, 0.5), got -1"},
+       testing_support::At("/material/nu", {"-1"})},
       {"clockwise", kQ4,
        [](json& j) {
          j["elements"][1]["nodes"] = {2, 5, 6, 3};
        },
-       "", "/elements/1/nodes: clockwise"},
+       "", testing_support::At("/elements/1/nodes")},
       {"zero_area", kQ4,
        [](json& j) {
          j["elements"][0]["nodes"] = {1, 2, 4, 5};
        },
-       "", "/elements/0/nodes: zero area"},
+       "", testing_support::At("/elements/0/nodes")},
       {"repeated_element_node", kQ4,
        [](json& j) {
          j["elements"][0]["nodes"] = {1, 2, 5, 1};
        },
-       "", "/elements/0/nodes/3: node 1 appears twice"},
+       "", testing_support::At("/elements/0/nodes/3", {"node 1"})},
       {"three_node_element", kQ4,
        [](json& j) {
          j["elements"][0]["nodes"] = {1, 2, 5};
        },
-       "", "/elements/0/nodes: a Q4 element has 4 nodes, got 3"},
+       "", testing_support::At("/elements/0/nodes", {"3"})},
       {"edge_not_a_side", kQ4,
        [](json& j) {
          j["tractions"][0]["edges"][0] = {4, 6};
        },
-       "", "/tractions/0/edges/0: node 4 - node 6 is not a side of any element"},
+       "", testing_support::At("/tractions/0/edges/0", {"node 4", "node 6"})},
       {"interior_edge", kQ4,
        [](json& j) {
          j["tractions"][0]["edges"][0] = {2, 5};
        },
-       "", "/tractions/0/edges/0: node 2 - node 5 is an interior edge"},
+       "", testing_support::At("/tractions/0/edges/0", {"node 2", "node 5"})},
       {"element_side_out_of_range", kQ4,
        [](json& j) {
          j["tractions"][0] = {{"element_sides", {{0, 4}}}, {"traction", {0, 1}}};
        },
-       "", "/tractions/0/element_sides/0/1: a side is 0..3, got 4"},
+       "", testing_support::At("/tractions/0/element_sides/0/1", {"4"})},
       {"large_deformation", kQ4, [](json& j) { j["deformation"] = "large"; }, "",
-       "/deformation: the plane-stress Q4 model is small-deformation only"},
+       testing_support::At("/deformation")},
       {"group_without_mesh", kQ4,
        [](json& j) {
          j["supports"][0] = {{"group", "left"}, {"fixed", {"x"}}};
        },
-       "", "/supports/0/group: groups name physical groups of a Gmsh mesh"},
+       "", testing_support::At("/supports/0/group")},
       {"mesh_and_nodes", kQ4,
        [](json& j) {
          j["mesh"] = {{"file", "x.msh"}};
        },
-       "", "/nodes: give either \"mesh\" or \"nodes\" and \"elements\""},
+       "", testing_support::At("/nodes", {"\"mesh\"", "\"nodes\"", "\"elements\""})},
       {"lcp_q_size", kLcp,
        [](json& j) {
          j["q"] = {1, 2, 3};
        },
-       "", "/q: has 3 entries, M is 2 x 2"},
+       "", testing_support::At("/q", {"2 x 2"})},
       {"lcp_ragged", kLcp,
        [](json& j) {
          j["M"][1] = {1, 2, 3};
        },
-       "", "/M/1: has 3 entries, M has 2 rows: M must be square"},
+       "", testing_support::At("/M/1")},
       {"lcp_sparse_not_square", kLcp,
        [](json& j) {
          j["M"] = {{"rows", 2}, {"cols", 3}, {"entries", json::array()}};
        },
-       "", "/M/cols: M must be square, got 2 x 3"},
+       "", testing_support::At("/M/cols", {"2 x 3"})},
       {"lcp_entry_out_of_range", kLcp,
        [](json& j) {
          j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{5, 0, 1.0}}}};
        },
-       "", "/M/entries/0/0: row 5 outside 0..1"},
+       "", testing_support::At("/M/entries/0/0", {"row 5"})},
       {"lcp_duplicate_entry", kLcp,
        [](json& j) {
          j["M"] = {{"rows", 2}, {"cols", 2}, {"entries", {{0, 0, 1.0}, {0, 0, 2.0}}}};
        },
-       "", "/M/entries/1: entry (0, 0) given twice (also /M/entries/0)"},
-      {"lcp_wrong_M", kLcp, [](json& j) { j["M"] = 3; }, "",
-       "/M: expected an array of rows (dense) or an object"},
+       "", testing_support::At("/M/entries/1", {"/M/entries/0"})},
+      {"lcp_wrong_M", kLcp, [](json& j) { j["M"] = 3; }, "", testing_support::At("/M")},
   };
 }
 
@@ -488,9 +492,7 @@ TEST(IoProblemFileTest, EveryBadInputIsRefusedNamingFilePointerAndReason) {
       ADD_FAILURE() << c.name << ": accepted";
     } catch (const io::InputError& e) {
       const std::string message = e.what();
-      EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << c.name << ": " << message;
-      EXPECT_NE(message.find(c.expected), std::string::npos)
-          << c.name << ": expected '" << c.expected << "' in: " << message;
+      EXPECT_TRUE(testing_support::RefusedAt(message, path, c.expected)) << c.name;
     }
   }
 }
@@ -546,21 +548,22 @@ TEST(IoGmshTest, RefusesOtherVersionsElementsAndBadReferences) {
   struct Case {
     std::string name;
     std::string text;
-    std::string expected;
+    testing_support::Refusal expected;
   } cases[] = {
-      {"v22", Replace(good, "4.1 0 8", "2.2 0 8"), "line 2: Gmsh mesh format version '2.2'"},
-      {"v40", Replace(good, "4.1 0 8", "4 0 8"), "version '4' is not supported"},
-      {"binary", Replace(good, "4.1 0 8", "4.1 1 8"), "binary Gmsh files are not supported"},
-      {"not_gmsh", "hello", "line 1: not a Gmsh mesh file"},
+      {"v22", Replace(good, "4.1 0 8", "2.2 0 8"), testing_support::At("line 2", {"'2.2'"})},
+      {"v40", Replace(good, "4.1 0 8", "4 0 8"), testing_support::At("line 2", {"'4'"})},
+      {"binary", Replace(good, "4.1 0 8", "4.1 1 8"), testing_support::At("line 2")},
+      {"not_gmsh", "hello", testing_support::At("line 1")},
       {"triangle", Replace(good, "2 1 3 2\n6 1 5 6 4\n7 5 2 3 6", "2 1 2 1\n6 1 5 6"),
-       "element type 2 (3-node triangle) is not supported"},
+       testing_support::At("", {"type 2"})},
       {"second_order_line", Replace(good, "1 1 1 2\n2 1 5\n3 5 2", "1 1 8 1\n2 1 2 5"),
-       "element type 8 (3-node line)"},
+       testing_support::At("", {"type 8"})},
       {"unknown_node", Replace(good, "7 5 2 3 6", "7 5 2 3 60"),
-       "element 7 names node 60, which is not in $Nodes"},
-      {"truncated", good.substr(0, good.find("$EndElements") - 8), "unexpected end of file"},
+       testing_support::At("", {"element 7", "node 60"})},
+      {"truncated", good.substr(0, good.find("$EndElements") - 8),
+       testing_support::At("", {"unexpected end of file"})},
       {"bad_number", Replace(good, "1 1 0\n$EndNodes", "1 one 0\n$EndNodes"),
-       "expected a node coordinate (a finite number), got 'one'"},
+       testing_support::At("", {"'one'"})},
   };
   for (const auto& c : cases) {
     try {
@@ -568,9 +571,7 @@ TEST(IoGmshTest, RefusesOtherVersionsElementsAndBadReferences) {
       ADD_FAILURE() << c.name << ": accepted";
     } catch (const io::InputError& e) {
       const std::string message = e.what();
-      EXPECT_EQ(message.rfind("m.msh: ", 0), 0u) << c.name << ": " << message;
-      EXPECT_NE(message.find(c.expected), std::string::npos)
-          << c.name << ": expected '" << c.expected << "' in: " << message;
+      EXPECT_TRUE(testing_support::RefusedAt(message, "m.msh", c.expected)) << c.name;
     }
   }
 }
@@ -587,18 +588,19 @@ TEST(IoGmshTest, ProblemFileRefusesBadMeshesAndUnknownGroups) {
     std::string name;
     std::string mesh;  // the mesh file's text ("" for none)
     std::function<void(json&)> mutate;
-    std::string expected;
+    testing_support::Refusal expected;  // in the mesh file or the problem file
   } cases[] = {
       {"unknown_group", good, [](json& j) { j["tractions"][0]["group"] = "topp"; },
-       "/tractions/0/group: no 0-D or 1-D physical group \"topp\""},
+       testing_support::At("/tractions/0/group", {"\"topp\""})},
       {"point_group_traction", good, [](json& j) { j["tractions"][0]["group"] = "pin"; },
-       "/tractions/0/group: tractions need a 1-D physical group"},
-      {"missing_mesh", "", [](json&) {}, "cannot open the mesh file"},
-      {"clockwise", Replace(good, "7 5 2 3 6", "7 5 6 3 2"), [](json&) {}, "element 7: clockwise"},
+       testing_support::At("/tractions/0/group")},
+      {"missing_mesh", "", [](json&) {}, testing_support::At("", {"q4-block-gmsh.msh"})},
+      {"clockwise", Replace(good, "7 5 2 3 6", "7 5 6 3 2"), [](json&) {},
+       testing_support::At("element 7")},
       {"off_plane", Replace(good, "1 1 0\n$EndNodes", "1 1 0.5\n$EndNodes"), [](json&) {},
-       "node 6: z = 0.5: a plane-stress mesh must lie in the plane z = 0"},
+       testing_support::At("node 6", {"z = 0.5", "z = 0"})},
       {"version", Replace(good, "4.1 0 8", "2.2 0 8"), [](json&) {},
-       "version '2.2' is not supported"},
+       testing_support::At("line 2", {"'2.2'"})},
   };
   for (const auto& c : cases) {
     const auto sub = dir / c.name;
@@ -611,8 +613,12 @@ TEST(IoGmshTest, ProblemFileRefusesBadMeshesAndUnknownGroups) {
       io::LoadProblemFile((sub / "p.json").string());
       ADD_FAILURE() << c.name << ": accepted";
     } catch (const io::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos)
-          << c.name << ": expected '" << c.expected << "' in: " << e.what();
+      const std::string message = e.what();
+      EXPECT_TRUE(testing_support::Names(message, c.expected.names)) << c.name;
+      if (!c.expected.where.empty()) {
+        EXPECT_NE(message.find(": " + c.expected.where + ": "), std::string::npos)
+            << c.name << ": " << message << " does not point at " << c.expected.where;
+      }
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_model_check.h"
 #include "fd_check.h"
 #include "model/body_contact_model.h"
 #include "model/obstacle.h"
@@ -19,8 +20,6 @@
 
 namespace cb {
 namespace {
-
-using fd_check::FiniteDifferenceJacobian;
 
 constexpr double kFdTol = 1e-6;
 
@@ -95,21 +94,7 @@ TEST(SolidContactTest, HexahedralBodyGapDerivativesMatchFiniteDifferences) {
   std::mt19937 rng(32);
   const Vec u = RandomVec(model.num_dofs(), 0.1, &rng);
   const Vec r = -RandomVec(model.num_pairs(), 1.0, &rng).cwiseAbs();
-  auto gaps = [&](const Vec& v) {
-    Vec phi;
-    model.Gaps(v, &phi);
-    return phi;
-  };
-  auto reaction = [&](const Vec& v) {
-    Vec out;
-    model.GeneralisedReaction(v, r, &out);
-    return out;
-  };
-  SpMat jacobian, curvature;
-  model.GapDerivatives(u, r, &jacobian, &curvature);
-  EXPECT_DERIVATIVE_NEAR(Mat(jacobian), FiniteDifferenceJacobian(gaps, u), kFdTol);
-  EXPECT_GT(Mat(curvature).norm(), 0.0);
-  EXPECT_DERIVATIVE_NEAR(Mat(curvature), FiniteDifferenceJacobian(reaction, u), kFdTol);
+  fd_check::ExpectGapDerivativesMatch(model, u, r, kFdTol);
 }
 
 }  // namespace

@@ -437,6 +437,99 @@ void WarnOfDisagreements(const RunLabel& label, const RunRecorder& recorder) {
                recorder.first_disagreement().c_str());
 }
 
+// What every run of a comparison shares: the arguments, the problem, the path options, the
+// reference path (replay mode), and where the records and the summary table go.
+struct Comparison {
+  const RunArguments& a;
+  const Problem& problem;
+  const StepProblem& first;
+  const PathOptions& options;
+  const PathRecorder& path;
+  int total;
+  RecordFiles* files;
+  RecordWriter<RunOutcomeRow>* runs;
+  std::vector<CompareTableRow>* table;
+  RunJson* record;
+};
+
+// The reference path: the work every formulation is given in replay mode (warm start,
+// cut-backs and kinks as in `run`). Its kinks are the ones recorded. False, with the reason,
+// when it has no verified step to replay.
+bool TraceReference(const Problem& problem, Formulation* reference, int total,
+                    const PathOptions& options, RecordFiles* files, PathRecorder* path,
+                    std::string* reason) {
+  RunRecorder kinks_only(files, problem,
+                         {problem.name, "reference:" + reference->name(), reference->solver(),
+                          reference->settings(), "warm", "reference"},
+                         total);
+  struct KinkTee final : PathObserver {
+    PathRecorder* path;
+    RunRecorder* kinks;
+    void OnAttempt(const StepAttempt& at) override { path->OnAttempt(at); }
+    void OnKink(const KinkRecord& k) override {
+      path->OnKink(k);
+      kinks->OnKink(k);
+    }
+  } tee;
+  tee.path = path;
+  tee.kinks = &kinks_only;
+  const PathSummary s = TraceProblem(problem, *reference, options, &tee);
+  std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
+  if (path->steps.empty()) {
+    *reason = "the reference path has no verified step to replay (" + s.message + ")";
+    std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
+    return false;
+  }
+  return true;
+}
+
+// One formulation from one start: skipped when it does not accept the first step, else the
+// reference path replayed (or the problem traced); its outcome in runs.csv, the table and the
+// run record. False, with the reason, when the caller stopped it.
+bool CompareOne(const Comparison& c, Formulation& formulation, StartKind start,
+                std::string* reason) {
+  const RunArguments& a = c.a;
+  const Problem& problem = c.problem;
+  const RunLabel label{problem.name,           formulation.name(), formulation.solver(),
+                       formulation.settings(), ToString(start),    a.mode};
+  std::string why;
+  if (!formulation.Accepts(c.first, &why)) {
+    std::fprintf(stderr, "skipping %s: %s\n", formulation.name().c_str(), why.c_str());
+    c.runs->Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
+    c.table->push_back({formulation.name(), ToString(start), "skipped", {}, {}});
+    return true;
+  }
+  RunRecorder recorder(c.files, problem, label,
+                       a.mode == "replay" ? static_cast<int>(c.path.steps.size()) : c.total);
+  PathOptions run_options = c.options;
+  run_options.start = start;
+  run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
+  run_options.solve_repeats = a.repeat;
+  const PathSummary s = a.mode == "replay"
+                            ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
+                                         c.path, formulation, run_options, &recorder)
+                            : TraceProblem(problem, formulation, run_options, &recorder);
+  recorder.EndProgress();
+  c.runs->Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
+                 a.time_limit, a.tolerance});
+  c.table->push_back(
+      {formulation.name(), ToString(start),
+       std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
+       recorder.iterations(), recorder.solve_times_s(), recorder.fastest_solve_s(),
+       recorder.slowest_solve_s()});
+  WarnOfDisagreements(label, recorder);
+  RunJson* record = c.record;
+  ++record->runs;
+  record->repeat_disagreements += recorder.repeat_disagreements();
+  record->attempts += recorder.attempts();
+  record->accepted_steps += recorder.accepted();
+  if (s.status == Status::kStoppedByCaller) {
+    *reason = formulation.name() + ": " + s.message;
+    return false;
+  }
+  return true;
+}
+
 int CompareRuns(const RunArguments& a, const Problem& problem,
                 const std::vector<std::unique_ptr<Formulation>>& formulations,
                 Formulation* reference, const RecordTarget& target, RunJson* record,
@@ -447,76 +540,19 @@ int CompareRuns(const RunArguments& a, const Problem& problem,
   RecordFiles files(target);
   RecordWriter<RunOutcomeRow> runs(target, RunsSchema());
   const Activity comparing("comparing the formulations");
-
-  // The reference path: the work every formulation is given in replay mode (warm start,
-  // cut-backs and kinks as in `run`). Its kinks are the ones recorded.
   PathRecorder path;
   if (a.mode == "replay") {
     options.start = StartKind::kWarm;
-    RunRecorder kinks_only(&files, problem,
-                           {problem.name, "reference:" + reference->name(), reference->solver(),
-                            reference->settings(), "warm", "reference"},
-                           total);
-    struct KinkTee final : PathObserver {
-      PathRecorder* path;
-      RunRecorder* kinks;
-      void OnAttempt(const StepAttempt& at) override { path->OnAttempt(at); }
-      void OnKink(const KinkRecord& k) override {
-        path->OnKink(k);
-        kinks->OnKink(k);
-      }
-    } tee;
-    tee.path = &path;
-    tee.kinks = &kinks_only;
-    const PathSummary s = TraceProblem(problem, *reference, options, &tee);
-    std::fprintf(stderr, "reference %s: %s\n", reference->name().c_str(), s.message.c_str());
-    if (path.steps.empty()) {
-      *reason = "the reference path has no verified step to replay (" + s.message + ")";
-      std::fprintf(stderr, "contactbench: %s\n", reason->c_str());
+    if (!TraceReference(problem, reference, total, options, &files, &path, reason)) {
       return kExitFailure;
     }
   }
-
   std::vector<CompareTableRow> table;
+  const Comparison comparison{a,     problem, first, options, path,
+                              total, &files,  &runs, &table,  record};
   for (const auto& formulation : formulations) {
     for (StartKind start : a.starts) {
-      const RunLabel label{problem.name,          formulation->name(),
-                           formulation->solver(), formulation->settings(),
-                           ToString(start),       a.mode};
-      std::string why;
-      if (!formulation->Accepts(first, &why)) {
-        std::fprintf(stderr, "skipping %s: %s\n", formulation->name().c_str(), why.c_str());
-        runs.Write({label, "skipped", 0, 0, why, a.time_limit, a.tolerance});
-        table.push_back({formulation->name(), ToString(start), "skipped", {}, {}});
-        continue;
-      }
-      RunRecorder recorder(&files, problem, label,
-                           a.mode == "replay" ? static_cast<int>(path.steps.size()) : total);
-      PathOptions run_options = options;
-      run_options.start = start;
-      run_options.locate_kinks = false;  // the reference path's kinks are the recorded ones
-      run_options.solve_repeats = a.repeat;
-      const PathSummary s =
-          a.mode == "replay" ? ReplayPath(*problem.model, problem.scales, ZeroState(*problem.model),
-                                          path, *formulation, run_options, &recorder)
-                             : TraceProblem(problem, *formulation, run_options, &recorder);
-      recorder.EndProgress();
-      runs.Write({label, ToString(s.status), recorder.attempts(), recorder.accepted(), s.message,
-                  a.time_limit, a.tolerance});
-      table.push_back(
-          {formulation->name(), ToString(start),
-           std::to_string(recorder.accepted()) + "/" + std::to_string(recorder.total_steps()),
-           recorder.iterations(), recorder.solve_times_s(), recorder.fastest_solve_s(),
-           recorder.slowest_solve_s()});
-      WarnOfDisagreements(label, recorder);
-      ++record->runs;
-      record->repeat_disagreements += recorder.repeat_disagreements();
-      record->attempts += recorder.attempts();
-      record->accepted_steps += recorder.accepted();
-      if (s.status == Status::kStoppedByCaller) {
-        *reason = formulation->name() + ": " + s.message;
-        return kExitInterrupted;
-      }
+      if (!CompareOne(comparison, *formulation, start, reason)) return kExitInterrupted;
     }
   }
   *reason = "every formulation was run (runs.csv holds each one's outcome)";

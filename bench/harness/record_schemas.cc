@@ -177,6 +177,8 @@ std::vector<T> Concatenate(std::vector<T> head, const std::vector<T>& tail) {
 
 }  // namespace
 
+// A schema table, one entry per column of steps.csv: longer than a function of steps would be,
+// and read as a table.
 const RecordSchema<AttemptRow>& StepsSchema() {
   using D = AttemptRow;
   static const RecordSchema<D> schema{
@@ -491,6 +493,7 @@ std::string_view ProblemSetStatus(const ProblemSetRow& d) {
 
 }  // namespace
 
+// A schema table, one entry per column of problems.csv (read as a table, as StepsSchema).
 const RecordSchema<ProblemSetRow>& ProblemSetSchema() {
   using D = ProblemSetRow;
   using A = const StepAttempt&;

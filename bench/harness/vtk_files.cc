@@ -123,11 +123,8 @@ void WriteIndices(std::ostringstream& out, const char* name, const std::vector<i
   out << "\n        </DataArray>\n";
 }
 
-void WriteGrid(const std::string& path, const Problem& problem, const State& state, int step,
-               const GridSelection& grid) {
-  const BodyContactModel& model = *problem.body;
-  const ElasticBody& body = model.body();
-  const int dim = body.dim();
+// The grid's cells, their nodes renumbered to the grid's points when it is a piece.
+std::vector<std::vector<int>> GridCells(const ElasticBody& body, const GridSelection& grid) {
   const std::vector<std::vector<int>> all_cells = body.Cells();
   const bool whole = grid.piece == nullptr;
   // The point of each node in this grid (-1: not in it).
@@ -143,10 +140,12 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
       for (int& node : cells.back()) node = point_of[node];
     }
   }
-  std::vector<double> reaction(body.num_nodes(), 0.0);
-  for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
+  return cells;
+}
 
-  std::ostringstream out = Open();
+// The header, the step's lambda and number as field data, and the piece's opening tag.
+void WriteGridHeader(std::ostringstream& out, const State& state, int step, std::size_t points,
+                     std::size_t cells) {
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <UnstructuredGrid>\n"
@@ -156,11 +155,17 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
       << "      <DataArray type=\"Int32\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">"
       << step << "</DataArray>\n"
       << "    </FieldData>\n"
-      << "    <Piece NumberOfPoints=\"" << grid.nodes.size() << "\" NumberOfCells=\""
-      << cells.size() << "\">\n"
-      << "      <Points>\n"
+      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfCells=\"" << cells << "\">\n";
+}
+
+// The reference points (3 components, zero beyond the body's dimension), then the cells.
+void WritePointsAndCells(std::ostringstream& out, const ElasticBody& body,
+                         const std::vector<int>& nodes,
+                         const std::vector<std::vector<int>>& cells) {
+  const int dim = body.dim();
+  out << "      <Points>\n"
       << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int n : grid.nodes) {
+  for (int n : nodes) {
     const Point x = body.reference(n);
     out << "         ";
     for (int c = 0; c < 3; ++c) out << ' ' << (c < dim ? x[c] : 0.0);
@@ -170,8 +175,18 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
   WriteConnectivity(out, cells);
   out << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ";
   for (const auto& cell : cells) out << ' ' << VtkCellType(cell.size(), dim);
-  out << "\n        </DataArray>\n      </Cells>\n"
-      << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
+  out << "\n        </DataArray>\n      </Cells>\n";
+}
+
+// Per point: the displacement and the contact reaction summed over the node's pairs; in a
+// piece also the global point number and which points are another piece's (ghosts).
+void WritePointData(std::ostringstream& out, const BodyContactModel& model, const State& state,
+                    const GridSelection& grid) {
+  const ElasticBody& body = model.body();
+  const int dim = body.dim();
+  std::vector<double> reaction(body.num_nodes(), 0.0);
+  for (int p = 0; p < model.num_pairs(); ++p) reaction[model.pairs()[p].node] += state.r[p];
+  out << "      <PointData Vectors=\"displacement\" Scalars=\"contact_reaction\">\n"
       << "        <DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" "
          "format=\"ascii\">\n";
   for (int n : grid.nodes) {
@@ -185,13 +200,19 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
       << "        <DataArray type=\"Float64\" Name=\"contact_reaction\" format=\"ascii\">\n";
   for (int n : grid.nodes) out << "          " << reaction[n] << '\n';
   out << "        </DataArray>\n";
-  if (!whole) {
+  if (grid.piece != nullptr) {
     WriteIndices(out, "global_point", grid.nodes);
     out << "        <DataArray type=\"UInt8\" Name=\"vtkGhostType\" format=\"ascii\">\n         ";
     for (bool duplicate : grid.piece->duplicate) out << ' ' << (duplicate ? kVtkDuplicatePoint : 0);
     out << "\n        </DataArray>\n";
   }
   out << "      </PointData>\n";
+}
+
+// Per cell: the body's cell fields (stresses); in a piece also the global cell number.
+void WriteCellData(std::ostringstream& out, const ElasticBody& body, const State& state,
+                   const GridSelection& grid) {
+  const bool whole = grid.piece == nullptr;
   const std::vector<CellField> fields =
       whole ? body.CellFields(state.u) : body.Restricted(grid.cells)->CellFields(state.u);
   out << "      <CellData" << ActiveArrays(fields) << ">\n";
@@ -202,7 +223,20 @@ void WriteGrid(const std::string& path, const Problem& problem, const State& sta
     out << "\n        </DataArray>\n";
   }
   if (!whole) WriteIndices(out, "global_cell", grid.cells);
-  out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  out << "      </CellData>\n";
+}
+
+void WriteGrid(const std::string& path, const Problem& problem, const State& state, int step,
+               const GridSelection& grid) {
+  const BodyContactModel& model = *problem.body;
+  const ElasticBody& body = model.body();
+  const std::vector<std::vector<int>> cells = GridCells(body, grid);
+  std::ostringstream out = Open();
+  WriteGridHeader(out, state, step, grid.nodes.size(), cells.size());
+  WritePointsAndCells(out, body, grid.nodes, cells);
+  WritePointData(out, model, state, grid);
+  WriteCellData(out, body, state, grid);
+  out << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   WriteWhole(out, path);
 }
 

@@ -2,8 +2,8 @@
 that README.md links to instead of typing figures by hand.
 
 `section(results_dir, sets)` computes each figure from the records the rest of COMPARISON.md
-reads (the comparison sets' steps, `bench/scaling_benchmark.json`) with comparison.py's own
-aggregation, so a figure here is the same number as the cell of the section it names:
+reads (the comparison sets' steps, `bench/scaling_benchmark.json`) with the functions of
+aggregation.py, so a figure here is the same number as the cell of the section it names:
   - per arch set (P2, P3): the steps implicit-fb verifies warm and from the report's cold start,
     and its median iterations over the accepted steps;
   - per arch set: the median time of an accepted warm step of each PETSc formulation over
@@ -12,7 +12,7 @@ aggregation, so a figure here is the same number as the cell of the section it n
 """
 import numpy as np
 
-from plotlib import comparison as cmp
+from plotlib import aggregation as cmp
 
 ARCH_SETS = ("arch-flat", "arch-curved")
 PETSC = ("petsc-rsls", "petsc-ssls")
@@ -81,7 +81,7 @@ def _p1_rows(results_dir):
 
 
 def section(results_dir, sets):
-    """The section's markdown lines; `sets`: comparison.comparison_sets' (name, runs, steps)."""
+    """The section's markdown lines; `sets`: aggregation.comparison_sets' (name, runs, steps)."""
     rows = []
     for name, runs, steps in sets:
         if name in ARCH_SETS:

@@ -26,7 +26,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
-from plotlib import comparison  # noqa: E402
+from plotlib import aggregation  # noqa: E402
 
 RECORD = "problems.csv"
 
@@ -99,12 +99,12 @@ def plot_profiles(name, rows, path):
         # A verified solve in 0 iterations (the start already solved it) has ratio 1, as the
         # best possible: the profile of iterations is over counts shifted by one.
         table = table + 1 if column == "iterations" else table
-        ratios = comparison.performance_ratios(table)
+        ratios = aggregation.performance_ratios(table)
         finite = ratios.replace(np.inf, np.nan).max().max()
         top = max(2.0, float(finite) * 1.5) if finite == finite else 2.0
         taus = np.logspace(0, math.log10(top), 400)
         solved = table.notna().mean()
-        for col, rho in comparison.profile(ratios, taus).items():
+        for col, rho in aggregation.profile(ratios, taus).items():
             ax.step(taus, rho, where="post", color=colours[col], linewidth=1.8,
                     label=f"{col}: {solved[col]:.0%} solved")
             any_line = any_line or rho.max() > 0
@@ -128,7 +128,7 @@ def plot_profiles(name, rows, path):
 def _time_text(row):
     if not row["solved"]:
         return "-"
-    return "%s (%s - %s)" % tuple(comparison.fmt(row[c] * 1e3) for c in
+    return "%s (%s - %s)" % tuple(aggregation.fmt(row[c] * 1e3) for c in
                                   ("time_s", "time_min_s", "time_max_s"))
 
 
@@ -140,8 +140,8 @@ def _opening(name, rows, run):
            f"`{run.get('problem_source', 'contactbench compare --problem-dir')}`: "
            f"{len(problems)} problems, {rows['formulation'].nunique()} formulations, each "
            "problem solved once cold and once from each of its file's guesses, judged by the "
-           f"verdict at tolerance {comparison.fmt(rows['tolerance'].iloc[0])}, time limit "
-           f"{comparison.fmt(rows['time_limit_s'].iloc[0])} s per solve (0: none), "
+           f"verdict at tolerance {aggregation.fmt(rows['tolerance'].iloc[0])}, time limit "
+           f"{aggregation.fmt(rows['time_limit_s'].iloc[0])} s per solve (0: none), "
            f"{int(samples.max()) if len(samples) else 0} timed solve(s) each.", ""]
     notes = run.get("problem_notes", [])
     dropped = [n for n in notes if "friction dropped" in n]
@@ -171,8 +171,8 @@ def set_section(name, rows, run, figures_dir):
             "|---|---|---|---|---|---|---|---|"]
     for _, r in table[table["taken"] > 0].iterrows():
         out.append(f"| {r['formulation']} | {r['start']} | {r['solved']}/{r['taken']} | "
-                   f"{r['refused']} | {comparison.fmt(r['iterations'])} | {_time_text(r)} | "
-                   f"{comparison.fmt(r['error_median'])} | {comparison.fmt(r['error_max'])} |")
+                   f"{r['refused']} | {aggregation.fmt(r['iterations'])} | {_time_text(r)} | "
+                   f"{aggregation.fmt(r['error_median'])} | {aggregation.fmt(r['error_max'])} |")
     taken = table.groupby("formulation", sort=False)["taken"].sum()
     refused_all = list(taken[taken == 0].index)
     out.append("")

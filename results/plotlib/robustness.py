@@ -6,7 +6,7 @@ Reads only results_dir/robustness/<problem>/<any name>/runs.csv and steps.csv, o
 size"). Each run replays a reference path traced at its own theta over the same stretch of
 arc length, so a larger theta means fewer, longer steps from a worse predictor. Per problem,
 theta and formulation:
-  - success rate: accepted steps / replayed steps (as comparison.aggregate counts them);
+  - success rate: accepted steps / replayed steps (as aggregation.aggregate counts them);
   - the median and the mean iterations over the accepted steps;
 and a figure of success against theta, one panel per problem.
 """
@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 import matplotlib.ticker  # noqa: E402
 
-from plotlib import comparison, styles  # noqa: E402
+from plotlib import aggregation, styles  # noqa: E402
 
 ROOT = "robustness"
 
@@ -49,7 +49,7 @@ def robustness_runs(results_dir):
         steps = steps[steps["mode"] == "replay"] if "mode" in steps else steps
         theta = nominal_theta(steps)
         found.append((runs["problem"].iloc[0], theta, runs, steps))
-    order = list(comparison.PROBLEM_LABEL)
+    order = list(aggregation.PROBLEM_LABEL)
 
     def key(item):
         problem, theta = item[0], item[1]
@@ -68,7 +68,7 @@ def robustness_table(found):
             if run["status"] == "skipped":
                 skipped[(problem, run["formulation"])] = run["message"]
                 continue
-            g = comparison._steps_of(steps, run["formulation"], run["start"])
+            g = aggregation.steps_of(steps, run["formulation"], run["start"])
             ok = g["accepted"].astype(bool)
             acc = g[ok]["iterations"]
             rows.append(dict(problem=problem, theta=theta, formulation=run["formulation"],
@@ -108,7 +108,7 @@ def plot_success(table, path):
         ax.yaxis.set_minor_locator(matplotlib.ticker.NullLocator())
         ax.set_xlabel("arc length theta (log scale)")
         ax.set_ylabel("failed steps of the warm replay (symlog scale)")
-        ax.set_title(comparison.PROBLEM_LABEL.get(problem, problem))
+        ax.set_title(aggregation.PROBLEM_LABEL.get(problem, problem))
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle("Robustness against the step size: steps the warm replay failed "
@@ -135,7 +135,7 @@ def section(results_dir, figures_dir):
     for problem, t in table.groupby("problem", sort=False):
         thetas = sorted(t["theta"].unique())
         steps = {th: int(t[t["theta"] == th]["steps"].max()) for th in thetas}
-        out += [f"### {comparison.PROBLEM_LABEL.get(problem, problem)}", "",
+        out += [f"### {aggregation.PROBLEM_LABEL.get(problem, problem)}", "",
                 "| formulation | " + " | ".join(
                     f"theta = {th:g} ({steps[th]} steps): success, median / mean iterations"
                     for th in thetas) + " |",
@@ -149,11 +149,11 @@ def section(results_dir, figures_dir):
                     continue
                 r = r.iloc[0]
                 cells.append(f"{r['success']:.0%} ({r['solved']}/{r['steps']}), "
-                             f"{comparison.fmt(r['median_iterations'], 'g')} / "
-                             f"{comparison.fmt(r['mean_iterations'], '.3g')}")
+                             f"{aggregation.fmt(r['median_iterations'], 'g')} / "
+                             f"{aggregation.fmt(r['mean_iterations'], '.3g')}")
             out.append(f"| {f} | " + " | ".join(cells) + " |")
         out.append("")
-        out += comparison.skipped_line(pd.DataFrame(
+        out += aggregation.skipped_line(pd.DataFrame(
             [dict(formulation=f, message=why) for (p, f), why in skipped.items() if p == problem],
             columns=["formulation", "message"]))
     path = os.path.join(figures_dir, "robustness_success.png")

@@ -51,9 +51,9 @@ std::string Layout(const OJson& j) {
   return out + "\n}\n";
 }
 
-void WriteBody(const Problem& problem, OJson* j) {
-  const BodyContactModel& model = *problem.body;
-  const ElasticBody& body = model.body();
+// "kind" and the body's own fields: dimension and members, or material and elements.
+void WriteBodyKind(const Problem& problem, OJson* j) {
+  const ElasticBody& body = problem.body->body();
   const int dim = body.dim();
   OJson nodes = OJson::array();
   for (int n = 0; n < body.num_nodes(); ++n)
@@ -90,25 +90,40 @@ void WriteBody(const Problem& problem, OJson* j) {
                                 "': its body is not a truss, a plane-stress Q4 mesh or a "
                                 "hexahedral solid");
   }
+}
+
+// Supported directions and nodal forces (the load pattern), node by node.
+void WriteSupportsAndLoads(const BodyContactModel& model, OJson* j) {
+  const ElasticBody& body = model.body();
+  const int dim = body.dim();
   OJson supports = OJson::array();
   OJson loads = OJson::array();
   const Vec& f = model.load_pattern();
   for (int n = 0; n < body.num_nodes(); ++n) {
     std::vector<int> fixed;
     Point force = Point::Zero(dim);
+    bool loaded = false;  // ||force||^2 > 0: some component's square is (a sum of squares is 0
+                          // only when each is), tested without Eigen's vectorised sum, which
+                          // GCC 12 misreads here as a read past the 3 entries of a Point
     for (int c = 0; c < dim; ++c) {
       const int dof = body.dofs().dof(n, c);
       if (dof < 0) {
         fixed.push_back(c);
       } else {
         force[c] = f[dof];
+        loaded = loaded || force[c] * force[c] > 0.0;
       }
     }
     if (!fixed.empty()) supports.push_back({{"node", n}, {"fixed", Directions(fixed)}});
-    if (force.squaredNorm() > 0.0) loads.push_back({{"node", n}, {"force", ToJson(force)}});
+    if (loaded) loads.push_back({{"node", n}, {"force", ToJson(force)}});
   }
   (*j)["supports"] = supports;
   (*j)["loads"] = loads;
+}
+
+// The obstacles, with ids obstacle0, obstacle1, ...
+void WriteObstacles(const Problem& problem, OJson* j) {
+  const BodyContactModel& model = *problem.body;
   OJson obstacles = OJson::array();
   for (std::size_t k = 0; k < model.obstacles().size(); ++k) {
     const Obstacle* o = model.obstacles()[k].get();
@@ -137,6 +152,13 @@ void WriteBody(const Problem& problem, OJson* j) {
     }
   }
   (*j)["obstacles"] = obstacles;
+}
+
+// The contact pairs, and the control (the node and direction of the recorded displacement).
+void WritePairsAndControl(const Problem& problem, OJson* j) {
+  const BodyContactModel& model = *problem.body;
+  const ElasticBody& body = model.body();
+  const int dim = body.dim();
   OJson pairs = OJson::array();
   for (const auto& p : model.pairs()) {
     pairs.push_back({{"node", p.node}, {"obstacle", "obstacle" + std::to_string(p.obstacle)}});
@@ -152,6 +174,13 @@ void WriteBody(const Problem& problem, OJson* j) {
       }
     }
   }
+}
+
+void WriteBody(const Problem& problem, OJson* j) {
+  WriteBodyKind(problem, j);
+  WriteSupportsAndLoads(*problem.body, j);
+  WriteObstacles(problem, j);
+  WritePairsAndControl(problem, j);
 }
 
 }  // namespace

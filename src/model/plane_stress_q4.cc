@@ -8,6 +8,9 @@
 #include <string>
 #include <utility>
 
+#include "model/displacement_size.h"
+#include "model/element_pattern.h"
+
 namespace cb {
 namespace {
 
@@ -23,11 +26,7 @@ constexpr double kEtaNode[4] = {-1.0, -1.0, 1.0, 1.0};
 }
 
 void CheckSize(const Vec& u, int num_dofs, const char* what) {
-  if (u.size() != num_dofs) {
-    throw std::invalid_argument(std::string("PlaneStressQ4::") + what + ": u has size " +
-                                std::to_string(u.size()) + ", expected " +
-                                std::to_string(num_dofs));
-  }
+  CheckDisplacementSize(u, num_dofs, "PlaneStressQ4", what);
 }
 
 // Plane-stress elasticity times thickness: t E / (1 - nu^2) [[1, nu, 0], [nu, 1, 0],
@@ -86,42 +85,44 @@ bool ElementStiffness(const Eigen::Matrix<double, 4, 2>& xy, const Eigen::Matrix
   return true;
 }
 
-}  // namespace
-
-PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
-                             const PlaneStressMaterial& material, const std::vector<bool>& fixed)
-    : coordinates_(std::move(coordinates)), elements_(std::move(elements)), material_(material) {
-  if (coordinates_.cols() != 2) {
+// The inputs the constructor refuses: coordinates not n x 2 or not finite, a material out of
+// range, a `fixed` of the wrong size.
+void CheckInputs(const Mat& coordinates, const PlaneStressMaterial& material,
+                 const std::vector<bool>& fixed) {
+  if (coordinates.cols() != 2) {
     throw std::invalid_argument("PlaneStressQ4: coordinates have " +
-                                std::to_string(coordinates_.cols()) + " columns, expected 2");
+                                std::to_string(coordinates.cols()) + " columns, expected 2");
   }
-  for (Eigen::Index n = 0; n < coordinates_.rows(); ++n) {
-    if (!coordinates_.row(n).allFinite()) {
+  for (Eigen::Index n = 0; n < coordinates.rows(); ++n) {
+    if (!coordinates.row(n).allFinite()) {
       throw std::invalid_argument("PlaneStressQ4: node " + std::to_string(n) +
                                   " has non-finite coordinates");
     }
   }
-  if (!(material_.youngs_modulus > 0.0) || !std::isfinite(material_.youngs_modulus)) {
+  if (!(material.youngs_modulus > 0.0) || !std::isfinite(material.youngs_modulus)) {
     throw std::invalid_argument("PlaneStressQ4: Young's modulus must be positive, got " +
-                                std::to_string(material_.youngs_modulus));
+                                std::to_string(material.youngs_modulus));
   }
-  if (!(material_.thickness > 0.0) || !std::isfinite(material_.thickness)) {
+  if (!(material.thickness > 0.0) || !std::isfinite(material.thickness)) {
     throw std::invalid_argument("PlaneStressQ4: thickness must be positive, got " +
-                                std::to_string(material_.thickness));
+                                std::to_string(material.thickness));
   }
-  if (!(material_.poisson_ratio > -1.0 && material_.poisson_ratio < 0.5)) {
+  if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
     throw std::invalid_argument("PlaneStressQ4: Poisson's ratio must lie in (-1, 0.5), got " +
-                                std::to_string(material_.poisson_ratio));
+                                std::to_string(material.poisson_ratio));
   }
-  const int nodes = num_nodes();
+  const auto nodes = static_cast<int>(coordinates.rows());
   if (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nodes) * 2) {
     throw std::invalid_argument("PlaneStressQ4: `fixed` has " + std::to_string(fixed.size()) +
                                 " entries, expected num_nodes * 2 = " + std::to_string(2 * nodes) +
                                 " (or none)");
   }
-  dofs_ = DofMap(nodes, 2, fixed);
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const Element& el = elements_[e];
+}
+
+// Every element names four distinct known nodes.
+void CheckElements(const std::vector<PlaneStressQ4::Element>& elements, int nodes) {
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const PlaneStressQ4::Element& el = elements[e];
     for (int a = 0; a < 4; ++a) {
       if (el[a] < 0 || el[a] >= nodes) {
         ThrowElement(e, "names an unknown node " + std::to_string(el[a]) + " (the mesh has " +
@@ -132,78 +133,25 @@ PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
       }
     }
   }
+}
 
-  // Sparsity pattern built directly in compressed column form, O(nnz) memory: K(i, j) is
-  // structurally non-zero iff the nodes of dofs i and j share an element. A triplet list
-  // would hold 64 entries per element (10^7 for the 400 x 400 mesh of P1) and sort them.
-  //
-  // Node adjacency (self included) as CSR, from the elements, then sorted and deduplicated.
-  std::vector<int> adj_start(nodes + 1, 0);
-  for (const Element& el : elements_) {
-    for (int a = 0; a < 4; ++a) adj_start[el[a] + 1] += 4;
-  }
-  for (int n = 0; n < nodes; ++n) adj_start[n + 1] += adj_start[n];
-  std::vector<int> adj(adj_start[nodes]);
-  {
-    std::vector<int> cursor(adj_start.begin(), adj_start.end() - 1);
-    for (const Element& el : elements_) {
-      for (int a = 0; a < 4; ++a) {
-        for (int b = 0; b < 4; ++b) adj[cursor[el[a]]++] = el[b];
-      }
-    }
-  }
-  std::vector<int> adj_count(nodes, 0);
-  for (int n = 0; n < nodes; ++n) {
-    auto first = adj.begin() + adj_start[n];
-    auto last = adj.begin() + adj_start[n + 1];
-    std::sort(first, last);
-    adj_count[n] = static_cast<int>(std::unique(first, last) - first);
-  }
-
-  // Columns follow the dof numbering, which is increasing in (node, component); rows within a
-  // column come out sorted because the adjacency lists are.
-  const int d = dofs_.num_dofs();
-  std::vector<int> outer(d + 1, 0);
-  std::vector<int> inner;
-  {
-    std::size_t estimate = 0;
-    for (int n = 0; n < nodes; ++n) estimate += 4 * static_cast<std::size_t>(adj_count[n]);
-    inner.reserve(estimate);
-  }
-  for (int n = 0; n < nodes; ++n) {
-    for (int c = 0; c < 2; ++c) {
-      const int j = dofs_.dof(n, c);
-      if (j < 0) continue;
-      for (int k = 0; k < adj_count[n]; ++k) {
-        const int m = adj[adj_start[n] + k];
-        for (int c2 = 0; c2 < 2; ++c2) {
-          const int i = dofs_.dof(m, c2);
-          if (i >= 0) inner.push_back(i);
-        }
-      }
-      outer[j + 1] = static_cast<int>(inner.size());
-    }
-  }
-  stiffness_.resize(d, d);
-  stiffness_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), stiffness_.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), stiffness_.innerIndexPtr());
-  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + inner.size(), 0.0);
-
-  // Element loop: scatter-add K_e into the slots found by binary search in each column.
-  const Eigen::Matrix3d dmat = ElasticityMatrix(material_);
-  const int* col_start = stiffness_.outerIndexPtr();
-  const int* rows = stiffness_.innerIndexPtr();
-  double* values = stiffness_.valuePtr();
+// Element loop: scatter-add K_e into the slots of `stiffness`'s pattern found by binary search
+// in each column.
+void AssembleStiffness(const Mat& coordinates, const std::vector<PlaneStressQ4::Element>& elements,
+                       const PlaneStressMaterial& material, const DofMap& dofs, SpMat* stiffness) {
+  const Eigen::Matrix3d dmat = ElasticityMatrix(material);
+  const int* col_start = stiffness->outerIndexPtr();
+  const int* rows = stiffness->innerIndexPtr();
+  double* values = stiffness->valuePtr();
   Mat8 ke;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const Element& el = elements_[e];
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const PlaneStressQ4::Element& el = elements[e];
     Eigen::Matrix<double, 4, 2> xy;
     int dof[8];
     for (int a = 0; a < 4; ++a) {
-      xy.row(a) = coordinates_.row(el[a]);
-      dof[2 * a] = dofs_.dof(el[a], 0);
-      dof[2 * a + 1] = dofs_.dof(el[a], 1);
+      xy.row(a) = coordinates.row(el[a]);
+      dof[2 * a] = dofs.dof(el[a], 0);
+      dof[2 * a + 1] = dofs.dof(el[a], 1);
     }
     if (!ElementStiffness(xy, dmat, &ke)) {
       ThrowElement(e, "has non-positive area or clockwise node order");
@@ -219,6 +167,18 @@ PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
       }
     }
   }
+}
+
+}  // namespace
+
+PlaneStressQ4::PlaneStressQ4(Mat coordinates, std::vector<Element> elements,
+                             const PlaneStressMaterial& material, const std::vector<bool>& fixed)
+    : coordinates_(std::move(coordinates)), elements_(std::move(elements)), material_(material) {
+  CheckInputs(coordinates_, material_, fixed);
+  dofs_ = DofMap(num_nodes(), 2, fixed);
+  CheckElements(elements_, num_nodes());
+  stiffness_ = ElementStiffnessPattern(dofs_, elements_);
+  AssembleStiffness(coordinates_, elements_, material_, dofs_, &stiffness_);
 }
 
 double PlaneStressQ4::Energy(const Vec& u) const {

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "model/displacement_size.h"
+
 namespace cb {
 namespace {
 
@@ -14,11 +16,7 @@ namespace {
 }
 
 void CheckSize(const Vec& u, int num_dofs, const char* what) {
-  if (u.size() != num_dofs) {
-    throw std::invalid_argument(std::string("Truss::") + what + ": u has size " +
-                                std::to_string(u.size()) + ", expected " +
-                                std::to_string(num_dofs));
-  }
+  CheckDisplacementSize(u, num_dofs, "Truss", what);
 }
 
 Truss::MemberDofs DofsOf(const DofMap& map, const TrussMember& m) {
