@@ -6,6 +6,7 @@
 
 #include "core/timer.h"
 #include "formulations/common/step_equations.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -33,7 +34,7 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
     result->history.push_back(record);
     if (on_iteration) on_iteration(*info.x);
     if (controls.interrupted && controls.interrupted()) return false;
-    timed_out = controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s;
+    timed_out = PastTimeLimit(controls, clock);
     return !timed_out;
   };
   SolverSummary summary = solver.Solve(system, x, observe);  // not const: returned by move
