@@ -87,7 +87,8 @@ struct IpoptPrimalDual {
 };
 
 // What ipopt-energy / ipopt-mpcc leave in StepResult::warm_state for the next step's warm
-// start: the final primal-dual point of the NLP, in its own scaled variables.
+// start: the final primal-dual point of the NLP, in its own scaled variables (the driver's
+// channel of the warm-state rule, src/step/warm_state.md).
 struct IpoptWarmState {
   std::string formulation;  // "ipopt-energy" or "ipopt-mpcc:<reformulation>"
   ConstraintKind kind = ConstraintKind::kArcLength;
