@@ -5,94 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "core/timer.h"
-
 namespace cb {
-
-double SmoothedFischerBurmeister(double a, double b, double rho) {
-  return std::sqrt(a * a + b * b + 2.0 * rho * rho) - (a + b);
-}
-
-void FischerBurmeisterElement(double a, double b, double rho, double* d_a, double* d_b,
-                              double* d_rho) {
-  const double s = std::sqrt(a * a + b * b + 2.0 * rho * rho);
-  if (s > 0.0) {
-    *d_a = a / s - 1.0;
-    *d_b = b / s - 1.0;
-    *d_rho = 2.0 * rho / s;
-  } else {
-    // The limit along (a, b) = t (1, 1), t -> 0+ (see the header).
-    *d_a = M_SQRT1_2 - 1.0;
-    *d_b = M_SQRT1_2 - 1.0;
-    *d_rho = 0.0;
-  }
-}
-
-double ComplementarityResidual(const StepEquationLayout& l, const Vec& x) {
-  double comp = 0.0;
-  for (int p = 0; p < l.nc; ++p)
-    comp = std::max(comp, std::abs(std::min(x[l.g() + p], -x[l.r() + p])));
-  return comp;
-}
-
-void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, double* dlambda) {
-  const StepConstraint& c = step.constraint;
-  switch (c.kind) {
-    case ConstraintKind::kArcLength: {
-      const double w = c.lambda_weight;
-      const double norm = std::sqrt(du.squaredNorm() + w * w * (*dlambda) * (*dlambda));
-      if (norm > 0.0) {
-        du *= c.arc_length / norm;
-        *dlambda *= c.arc_length / norm;
-      } else if (w > 0.0) {
-        *dlambda = c.arc_length / w;  // no direction known: a pure load increment
-      }
-      break;
-    }
-    case ConstraintKind::kFixedLoad:
-      *dlambda = c.target - step.base.lambda;
-      break;
-    case ConstraintKind::kDisplacement:
-      du[c.index] = c.target - step.base.u[c.index];
-      break;
-    case ConstraintKind::kKink:
-      break;  // (53) involves g and r; nothing to fit in the increment
-    case ConstraintKind::kHyperplane: {
-      // The nearest point of the plane: move along its unit normal.
-      const double off = c.arc_length - c.normal.dot(du) - c.normal_lambda * (*dlambda);
-      du += off * c.normal;
-      *dlambda += off * c.normal_lambda;
-      break;
-    }
-  }
-}
-
-Vec MakeStepEquationStart(const StepProblem& step, const StartPoint& start, int size) {
-  const ContactModel& model = *step.model;
-  const StepEquationLayout layout{model.num_dofs(), model.num_pairs(), false};
-  Vec x = Vec::Zero(size);
-  Eigen::Ref<Vec> du = x.segment(layout.du(), layout.d);
-  auto g = x.segment(layout.g(), layout.nc);
-  auto r = x.segment(layout.r(), layout.nc);
-  double dlambda = 0.0;
-  if (start.kind == StartKind::kWarm) {
-    du = start.du;                                 // (38)
-    dlambda = start.dlambda;                       // (41)
-    FitIncrementToConstraint(step, du, &dlambda);  // (33) holds exactly
-    r = start.r / step.scales.force;               // (40)
-    Vec phi;
-    model.Gaps(step.base.u + du, &phi);
-    g = -phi / step.scales.length;  // (39): (30) holds exactly
-  } else {
-    FitIncrementToConstraint(step, du, &dlambda);  // du0 = 0
-    g.setConstant(-1.0);
-    r.setConstant(1.0);
-  }
-  x[layout.dlambda()] = dlambda;
-  return x;
-}
-
-// --- the system ------------------------------------------------------------------------------
 
 struct StepEquationSystem::PatternCache {
   const ContactModel* model = nullptr;
@@ -360,47 +273,6 @@ void StepEquationSystem::FillJacobian(const Vec& x, const Unknowns& unknowns,
       cursor.Add(c.normal_lambda / c.arc_length);
       break;
   }
-}
-
-// --- a solve ---------------------------------------------------------------------------------
-
-SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
-                                    const SolveControls& controls, StepResult* result,
-                                    const std::function<void(const Vec&)>& on_iteration) {
-  const StepEquationLayout& l = system.layout();
-  const StepProblem& step = system.step();
-  Stopwatch clock;
-  bool timed_out = false;
-  auto observe = [&](const IterationInfo& info) {
-    IterationRecord record;
-    record.iteration = info.iteration;
-    record.merit = info.merit;
-    record.residual_inf = info.residual_inf;
-    record.step_length = info.step_length;
-    record.comp_res = ComplementarityResidual(l, *info.x);
-    result->history.push_back(record);
-    if (on_iteration) on_iteration(*info.x);
-    if (controls.interrupted && controls.interrupted()) return false;
-    timed_out = controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s;
-    return !timed_out;
-  };
-  SolverSummary summary = solver.Solve(system, x, observe);  // not const: returned by move
-  if (timed_out && summary.status == Status::kStoppedByCaller) {
-    summary.status = Status::kTimeLimit;
-    summary.message = TimeLimitMessage(controls.time_limit_s) + " at iteration " +
-                      std::to_string(summary.iterations);
-  }
-
-  result->status = summary.status;
-  result->message = summary.message;
-  result->counts = {summary.iterations, summary.residual_evals, summary.jacobian_evals,
-                    summary.linear_solves};
-  result->point.du = x->segment(l.du(), l.d);
-  result->point.g = step.scales.length * x->segment(l.g(), l.nc);
-  result->point.r = step.scales.force * x->segment(l.r(), l.nc);
-  result->point.dlambda = (*x)[l.dlambda()];
-  result->details["final_merit"] = std::to_string(summary.final_merit);
-  return summary;
 }
 
 }  // namespace cb

@@ -68,6 +68,9 @@ class ImplicitFb final : public Formulation {
                StepResult* result) override;
 
   ImplicitFbOptions options_;
+  // Caches kept between steps (the warm-state rule, src/step/warm_state.md): the solvers' work
+  // storage and symbolic analyses, and the Jacobian's pattern. The previous step reaches a
+  // solve only through its StartPoint.
   StartSolvers solvers_;
   std::shared_ptr<ImplicitFbSystem::PatternCache> cache_;
 };

@@ -1,7 +1,7 @@
 # ipopt-energy and ipopt-mpcc, with Ipopt (Debian: coinor-libipopt-dev, scripts/packages.txt).
 # With Ipopt: the adapter and the formulations; without: the stub, whose IpoptAvailable() is
-# false. The NLPs (ipopt_nlp.cc) need no Ipopt and are built either way (their tests check the
-# derivatives in every build).
+# false. The NLPs (ipopt_nlp.h: ipopt_energy_nlp.cc, ipopt_mpcc_nlp.cc and their helpers) need
+# no Ipopt and are built either way (their tests check the derivatives in every build).
 option(CONTACTBENCH_WITH_IPOPT "Build the Ipopt formulations (needs coinor-libipopt-dev)" ON)
 
 set(CONTACTBENCH_HAVE_IPOPT OFF)
@@ -16,7 +16,11 @@ if(CONTACTBENCH_WITH_IPOPT)
   endif()
 endif()
 
-target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/ipopt_nlp.cc)
+target_sources(contactbench_formulations PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/ipopt_colouring.cc
+  ${CMAKE_CURRENT_LIST_DIR}/ipopt_energy_nlp.cc
+  ${CMAKE_CURRENT_LIST_DIR}/ipopt_mpcc_nlp.cc
+  ${CMAKE_CURRENT_LIST_DIR}/ipopt_sparse.cc)
 if(CONTACTBENCH_HAVE_IPOPT)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/ipopt_adapter.cc

@@ -55,6 +55,7 @@
 #include "formulations/common/config.h"
 #include "formulations/ipopt/ipopt_nlp.h"
 #include "step/formulation.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -86,7 +87,8 @@ struct IpoptPrimalDual {
 };
 
 // What ipopt-energy / ipopt-mpcc leave in StepResult::warm_state for the next step's warm
-// start: the final primal-dual point of the NLP, in its own scaled variables.
+// start: the final primal-dual point of the NLP, in its own scaled variables (the driver's
+// channel of the warm-state rule, src/step/warm_state.md).
 struct IpoptWarmState {
   std::string formulation;  // "ipopt-energy" or "ipopt-mpcc:<reformulation>"
   ConstraintKind kind = ConstraintKind::kArcLength;
@@ -238,7 +240,7 @@ class TnlpAdapter final : public Ipopt::TNLP {
     last_inf_du_ = inf_du;
     try {
       result_.history.push_back(record);
-      timed_out_ = controls_.time_limit_s > 0.0 && clock_.Seconds() > controls_.time_limit_s;
+      timed_out_ = PastTimeLimit(controls_, clock_);
       if ((controls_.interrupted && controls_.interrupted()) || timed_out_) {
         stopped_by_controls_ = true;
         return false;

@@ -138,6 +138,108 @@ class IpoptMpcc final : public Formulation {
     return x0;
   }
 
+  // What a sequence of Ipopt solves ends with: the last status and the last point Ipopt
+  // finalized (the start when there is none).
+  struct Outcome {
+    Ipopt::ApplicationReturnStatus status = Ipopt::Solve_Succeeded;
+    IpoptPrimalDual last;
+    bool have_solution = false;
+  };
+
+  // The penalty reformulation. An exact penalty is exact only above a threshold weight (the
+  // MPCC multipliers'): when Ipopt does not converge (e.g. stalls at a local minimiser with
+  // positive penalty, as on the degenerate Kojima-Shindo solution at weight 1), the step is
+  // solved again from the same start with 10 times the weight, up to penalty_max_weight.
+  Outcome SolvePenalty(const StepProblem& step, const StartPoint& start,
+                       const SolveControls& controls, MpccNlp* nlp, IpoptPrimalDual x0,
+                       const Ipopt::SmartPtr<TnlpAdapter>& adapter, StepResult* result) const {
+    Outcome outcome;
+    outcome.last = x0;
+    const bool warm = start.kind == StartKind::kWarm;
+    double weight = options_.penalty_weight;
+    int solves = 0;
+    for (;;) {
+      nlp->set_penalty_weight(weight);
+      if (solves > 0) x0 = MakeStart(step, start, *nlp, weight);
+      auto app = MakeIpoptApplication(common_, controls);
+      if (warm) SetIpoptWarmStartOptions(common_, common_.warm_mu_init, Ipopt::GetRawPtr(app));
+      adapter->set_start(x0);
+      adapter->set_iteration_offset(result->counts.iterations);
+      outcome.status = RunIpopt(Ipopt::GetRawPtr(app), adapter, result);
+      ++solves;
+      if (adapter->finalized()) {
+        outcome.last = adapter->solution();
+        outcome.have_solution = true;
+      }
+      if (MapIpoptStatus(outcome.status) == Status::kConverged ||
+          MapIpoptStatus(outcome.status) == Status::kTimeLimit || adapter->stopped_by_controls())
+        break;
+      if (weight * 10.0 > options_.penalty_max_weight * (1.0 + 1e-12)) break;
+      weight *= 10.0;
+    }
+    result->details["penalty_solves"] = std::to_string(solves);
+    result->details["penalty_final_weight"] = std::to_string(weight);
+    return outcome;
+  }
+
+  // The options of the Scholtes subproblem at relaxation t. An intermediate subproblem only
+  // feeds the next one: solved to scholtes_inner_tol times t, which is all the accuracy its
+  // relaxed answer has for the MPCC anyway.
+  IpoptCommonOptions ScholtesSubproblemOptions(double t) const {
+    IpoptCommonOptions subproblem = common_;
+    if (t > options_.scholtes_t_min) {
+      const double loose = options_.scholtes_inner_tol * t;
+      subproblem.tol = std::max(subproblem.tol, loose);
+      subproblem.constr_viol_tol = std::max(subproblem.constr_viol_tol, loose);
+      subproblem.compl_inf_tol = std::max(subproblem.compl_inf_tol, loose);
+    }
+    return subproblem;
+  }
+
+  // The Scholtes relaxation: t = t0, t0 q, t0 q^2, ... down to t_min (the last one solved at
+  // t_min), each subproblem warm started from the previous one's primal-dual point. A warm step
+  // starts at scholtes_warm_t0: its start is already nearly complementary, and a large t would
+  // first pull it to the relaxed set's centre.
+  Outcome SolveScholtes(const StartPoint& start, const SolveControls& controls, MpccNlp* nlp,
+                        const IpoptPrimalDual& x0, const Ipopt::SmartPtr<TnlpAdapter>& adapter,
+                        StepResult* result) const {
+    Outcome outcome;
+    outcome.last = x0;
+    const bool warm = start.kind == StartKind::kWarm;
+    double t = warm ? options_.scholtes_warm_t0 : options_.scholtes_t0;
+    t = std::max(t, options_.scholtes_t_min);
+    int subproblems = 0;
+    bool warm_next = warm;
+    IpoptPrimalDual current = x0;
+    for (;;) {
+      nlp->set_relaxation(t);
+      auto app = MakeIpoptApplication(ScholtesSubproblemOptions(t), controls);
+      // The first subproblem of a warm step starts from the previous step (warm_mu_init);
+      // later ones from the previous subproblem's answer, closer still (scholtes_mu_init).
+      if (warm_next) {
+        SetIpoptWarmStartOptions(
+            common_, subproblems == 0 ? common_.warm_mu_init : options_.scholtes_mu_init,
+            Ipopt::GetRawPtr(app));
+      }
+      adapter->set_start(current);
+      adapter->set_iteration_offset(result->counts.iterations);
+      outcome.status = RunIpopt(Ipopt::GetRawPtr(app), adapter, result);
+      ++subproblems;
+      if (!adapter->finalized()) break;
+      current = adapter->solution();
+      outcome.last = current;
+      outcome.have_solution = true;
+      if (MapIpoptStatus(outcome.status) != Status::kConverged || adapter->stopped_by_controls())
+        break;
+      if (t <= options_.scholtes_t_min) break;
+      t = std::max(t * options_.scholtes_factor, options_.scholtes_t_min);
+      warm_next = true;
+    }
+    result->details["scholtes_subproblems"] = std::to_string(subproblems);
+    result->details["scholtes_final_t"] = std::to_string(t);
+    return outcome;
+  }
+
   void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
                StepResult* result) override {
     MpccNlp nlp(step, options_.reformulation, options_.penalty_weight);
@@ -145,96 +247,21 @@ class IpoptMpcc final : public Formulation {
     const int nc = step.num_pairs();
     Stopwatch clock;
     Ipopt::SmartPtr<TnlpAdapter> adapter = new TnlpAdapter(&nlp, controls, clock, result);
-    IpoptPrimalDual x0 = MakeStart(step, start, nlp, options_.penalty_weight);
-    const bool warm = start.kind == StartKind::kWarm;
-
-    Ipopt::ApplicationReturnStatus status = Ipopt::Solve_Succeeded;
-    IpoptPrimalDual last = x0;
-    bool have_solution = false;
-    if (options_.reformulation == MpccReformulation::kPenalty) {
-      // An exact penalty is exact only above a threshold weight (the MPCC multipliers'): when
-      // Ipopt does not converge (e.g. stalls at a local minimiser with positive penalty, as on
-      // the degenerate Kojima-Shindo solution at weight 1), the step is solved again from the
-      // same start with 10 times the weight, up to penalty_max_weight.
-      double weight = options_.penalty_weight;
-      int solves = 0;
-      for (;;) {
-        nlp.set_penalty_weight(weight);
-        if (solves > 0) x0 = MakeStart(step, start, nlp, weight);
-        auto app = MakeIpoptApplication(common_, controls);
-        if (warm) SetIpoptWarmStartOptions(common_, common_.warm_mu_init, Ipopt::GetRawPtr(app));
-        adapter->set_start(x0);
-        adapter->set_iteration_offset(result->counts.iterations);
-        status = RunIpopt(Ipopt::GetRawPtr(app), adapter, result);
-        ++solves;
-        if (adapter->finalized()) {
-          last = adapter->solution();
-          have_solution = true;
-        }
-        if (MapIpoptStatus(status) == Status::kConverged ||
-            MapIpoptStatus(status) == Status::kTimeLimit || adapter->stopped_by_controls())
-          break;
-        if (weight * 10.0 > options_.penalty_max_weight * (1.0 + 1e-12)) break;
-        weight *= 10.0;
-      }
-      result->details["penalty_solves"] = std::to_string(solves);
-      result->details["penalty_final_weight"] = std::to_string(weight);
-    } else {
-      // Scholtes: t = t0, t0 q, t0 q^2, ... down to t_min (the last one solved at t_min), each
-      // subproblem warm started from the previous one's primal-dual point. A warm step starts
-      // at scholtes_warm_t0: its start is already nearly complementary, and a large t would
-      // first pull it to the relaxed set's centre.
-      double t = warm ? options_.scholtes_warm_t0 : options_.scholtes_t0;
-      t = std::max(t, options_.scholtes_t_min);
-      int subproblems = 0;
-      bool warm_next = warm;
-      IpoptPrimalDual current = x0;
-      for (;;) {
-        nlp.set_relaxation(t);
-        IpoptCommonOptions subproblem = common_;
-        if (t > options_.scholtes_t_min) {
-          // An intermediate subproblem only feeds the next one: solved to scholtes_inner_tol
-          // times t, which is all the accuracy its relaxed answer has for the MPCC anyway.
-          const double loose = options_.scholtes_inner_tol * t;
-          subproblem.tol = std::max(subproblem.tol, loose);
-          subproblem.constr_viol_tol = std::max(subproblem.constr_viol_tol, loose);
-          subproblem.compl_inf_tol = std::max(subproblem.compl_inf_tol, loose);
-        }
-        auto app = MakeIpoptApplication(subproblem, controls);
-        // The first subproblem of a warm step starts from the previous step (warm_mu_init);
-        // later ones from the previous subproblem's answer, closer still (scholtes_mu_init).
-        if (warm_next) {
-          SetIpoptWarmStartOptions(
-              common_, subproblems == 0 ? common_.warm_mu_init : options_.scholtes_mu_init,
-              Ipopt::GetRawPtr(app));
-        }
-        adapter->set_start(current);
-        adapter->set_iteration_offset(result->counts.iterations);
-        status = RunIpopt(Ipopt::GetRawPtr(app), adapter, result);
-        ++subproblems;
-        if (!adapter->finalized()) break;
-        current = adapter->solution();
-        last = current;
-        have_solution = true;
-        if (MapIpoptStatus(status) != Status::kConverged || adapter->stopped_by_controls()) break;
-        if (t <= options_.scholtes_t_min) break;
-        t = std::max(t * options_.scholtes_factor, options_.scholtes_t_min);
-        warm_next = true;
-      }
-      result->details["scholtes_subproblems"] = std::to_string(subproblems);
-      result->details["scholtes_final_t"] = std::to_string(t);
-    }
-    RecordIpoptStatus(status, *adapter, result);
+    const IpoptPrimalDual x0 = MakeStart(step, start, nlp, options_.penalty_weight);
+    const Outcome outcome = options_.reformulation == MpccReformulation::kPenalty
+                                ? SolvePenalty(step, start, controls, &nlp, x0, adapter, result)
+                                : SolveScholtes(start, controls, &nlp, x0, adapter, result);
+    RecordIpoptStatus(outcome.status, *adapter, result);
 
     const double length = step.scales.length;
     const double force = step.scales.force;
-    const Vec& x = last.x;
+    const Vec& x = outcome.last.x;
     result->point.du = length * x.segment(nlp.ix_u(), d);
     result->point.g = length * x.segment(nlp.ix_g(), nc);
     result->point.r = force * x.segment(nlp.ix_r(), nc);
     result->point.dlambda = x[nlp.ix_dlambda()];
-    if (have_solution) {
-      result->warm_state = IpoptWarmState{StateName(), step.constraint.kind, last};
+    if (outcome.have_solution) {
+      result->warm_state = IpoptWarmState{StateName(), step.constraint.kind, outcome.last};
     }
   }
 

@@ -124,6 +124,12 @@ class MpccNlp final : public IpoptNlp {
   bool HessianValues(const Vec& x, double sigma, const Vec& y, Vec* values) override;
 
  private:
+  // The steps of the constructor: the joint pattern of stiffness and curvature with its slots
+  // and colouring, the bounds, and the Jacobian's and the Hessian's structures.
+  void BuildJointPattern();
+  void SetBounds();
+  void AppendJacobianStructure();
+  void AppendHessianStructure();
   bool Evaluate(const Vec& x);  // u, stiffness, curvature (at r = R r^), gap Jacobian
   bool ThirdOrderTerm(const Vec& x, const Vec& y, Vec* joint_values);  // see the class comment
 

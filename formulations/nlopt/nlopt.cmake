@@ -20,10 +20,10 @@ target_sources(contactbench_formulations PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/nlopt_problems.cc)
 if(CONTACTBENCH_HAVE_NLOPT)
   target_sources(contactbench_formulations PRIVATE
+    ${CMAKE_CURRENT_LIST_DIR}/nlopt_adapter.cc
     ${CMAKE_CURRENT_LIST_DIR}/nlopt_energy.cc
     ${CMAKE_CURRENT_LIST_DIR}/nlopt_merit.cc
-    ${CMAKE_CURRENT_LIST_DIR}/nlopt_mpcc.cc
-    ${CMAKE_CURRENT_LIST_DIR}/nlopt_run.cc)
+    ${CMAKE_CURRENT_LIST_DIR}/nlopt_mpcc.cc)
   target_link_libraries(contactbench_formulations PRIVATE ${NLOPT_LIBRARIES})
   target_include_directories(contactbench_formulations SYSTEM PRIVATE ${NLOPT_INCLUDE_DIRS})
   # For code that asks at compile time (the tests); the formulations ask NloptAvailable().

@@ -1,7 +1,7 @@
 // The NLopt backend: `nlopt-merit` (1/2 ||F||^2 of the implicit smoothed-FB system,
 // nlopt_merit.cc), `nlopt-energy` (fixed-load energy NLP, nlopt_energy.cc) and `nlopt-mpcc`
 // (penalty-form step NLP, nlopt_mpcc.cc), on the functions of nlopt_problems.h through the
-// adapter of nlopt_run.h, with the options of nlopt_options.h. Without NLopt, nlopt_stub.cc
+// adapter of nlopt_adapter.h, with the options of nlopt_options.h. Without NLopt, nlopt_stub.cc
 // stands in (nlopt.cmake chooses).
 //
 // Common to all three (COMPARISON.md "Counting rule"):

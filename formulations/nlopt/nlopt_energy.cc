@@ -13,9 +13,9 @@
 
 #include "formulations/common/energy_step.h"
 #include "formulations/nlopt/nlopt.h"
+#include "formulations/nlopt/nlopt_adapter.h"
 #include "formulations/nlopt/nlopt_options.h"
 #include "formulations/nlopt/nlopt_problems.h"
-#include "formulations/nlopt/nlopt_run.h"
 
 namespace cb {
 

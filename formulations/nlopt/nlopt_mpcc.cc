@@ -11,9 +11,9 @@
 
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "formulations/nlopt/nlopt.h"
+#include "formulations/nlopt/nlopt_adapter.h"
 #include "formulations/nlopt/nlopt_options.h"
 #include "formulations/nlopt/nlopt_problems.h"
-#include "formulations/nlopt/nlopt_run.h"
 
 namespace cb {
 

@@ -116,6 +116,9 @@ class NonsmoothFormulation final : public Formulation {
                StepResult* result) override;
 
   NonsmoothOptions options_;
+  // Caches kept between steps (the warm-state rule, src/step/warm_state.md): the solvers' work
+  // storage and symbolic analyses, and the Jacobian's pattern. The previous step reaches a
+  // solve only through its StartPoint.
   StartSolvers solvers_;
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };

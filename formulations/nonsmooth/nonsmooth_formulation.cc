@@ -1,12 +1,11 @@
-#include <Eigen/Cholesky>
-#include <algorithm>
-#include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/nonsmooth/nonsmooth_restart.h"
 
 namespace cb {
 
@@ -58,118 +57,95 @@ std::string NonsmoothFormulation::settings() const {
   return out.str();
 }
 
+namespace {
+
+// Active sets A = {p : g^_p <= -r^_p} met along the iteration: a set seen before, but not at
+// the previous iterate, is a revisit (the cycling PDAS can show without a safeguard).
+class ActiveSetTrack {
+ public:
+  ActiveSetTrack(const StepEquationLayout& l, const Vec& x0) : l_(l), seen_{Of(x0)} {}
+
+  // A start (the restart's): its set joins the sets seen, without counting as a change.
+  void Restart(const Vec& x) { seen_.push_back(Of(x)); }
+  // An iterate of the solver.
+  void Observe(const Vec& y) {
+    std::vector<bool> a = Of(y);
+    if (a == seen_.back()) return;
+    ++changes_;
+    for (const auto& s : seen_) {
+      if (s == a) {
+        ++revisits_;
+        break;
+      }
+    }
+    seen_.push_back(std::move(a));
+  }
+  int size() const {
+    int active = 0;
+    for (bool in : seen_.back()) active += in ? 1 : 0;
+    return active;
+  }
+  int changes() const { return changes_; }
+  int revisits() const { return revisits_; }
+
+ private:
+  std::vector<bool> Of(const Vec& y) const {
+    std::vector<bool> a(l_.nc);
+    for (int p = 0; p < l_.nc; ++p) a[p] = y[l_.g() + p] <= -y[l_.r() + p];
+    return a;
+  }
+
+  const StepEquationLayout& l_;
+  std::vector<std::vector<bool>> seen_;
+  int changes_ = 0;
+  int revisits_ = 0;
+};
+
+// The second run from the restart's start (nonsmooth_restart.h), with the counts of both runs
+// and both messages in `result`.
+SolverSummary RunRestart(const StepProblem& step, const StartPoint& start,
+                         const SolveControls& controls, EquationSolver& solver,
+                         NonsmoothSystem& system, ActiveSetTrack* track, Vec* x,
+                         StepResult* result) {
+  const StepEquationLayout& l = system.layout();
+  const StartPoint again = RestartPoint(step, start, l.nc);
+  *x = MakeStepEquationStart(step, again, l.size());
+  LeanOnClosedPairs(step, again, l, x);
+  const SolveCounts first = result->counts;
+  const std::string first_message = result->message;
+  track->Restart(*x);
+  const SolverSummary summary = RunStepEquationSolver(solver, system, x, controls, result,
+                                                      [track](const Vec& y) { track->Observe(y); });
+  result->counts.iterations += first.iterations;
+  result->counts.residual_evals += first.residual_evals;
+  result->counts.jacobian_evals += first.jacobian_evals;
+  result->counts.linear_solves += first.linear_solves;
+  result->message = "restarted after: " + first_message + "; then: " + result->message;
+  return summary;
+}
+
+}  // namespace
+
 void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& start,
                                    const SolveControls& controls, StepResult* result) {
   NonsmoothSystem system(step, options_.function, cache_);
   const StepEquationLayout& l = system.layout();
   Vec x = MakeStepEquationStart(step, start, l.size());
-
-  // Active sets A = {p : g^_p <= -r^_p} met along the iteration: a set seen before, but not at
-  // the previous iterate, is a revisit (the cycling PDAS can show without a safeguard).
-  auto active_set = [&l](const Vec& y) {
-    std::vector<bool> a(l.nc);
-    for (int p = 0; p < l.nc; ++p) a[p] = y[l.g() + p] <= -y[l.r() + p];
-    return a;
-  };
-  std::vector<std::vector<bool>> seen = {active_set(x)};
-  int changes = 0;
-  int revisits = 0;
-  auto on_iteration = [&](const Vec& y) {
-    std::vector<bool> a = active_set(y);
-    if (a == seen.back()) return;
-    ++changes;
-    for (const auto& s : seen) {
-      if (s == a) {
-        ++revisits;
-        break;
-      }
-    }
-    seen.push_back(std::move(a));
-  };
-  SolverSummary summary =
-      RunStepEquationSolver(solvers_.For(start), system, &x, controls, result, on_iteration);
-
-  const StepConstraint& c = step.constraint;
-  const bool restart = options_.restart && summary.status != Status::kConverged &&
-                       summary.status != Status::kStoppedByCaller &&
-                       summary.status != Status::kTimeLimit &&
-                       !(summary.final_residual_inf <= options_.restart_residual) &&
-                       start.kind == StartKind::kWarm && c.kind == ConstraintKind::kArcLength &&
-                       c.lambda_weight > 0.0;
+  ActiveSetTrack track(l, x);
+  SolverSummary summary = RunStepEquationSolver(solvers_.For(start), system, &x, controls, result,
+                                                [&track](const Vec& y) { track.Observe(y); });
+  const bool restart = TakesRestart(options_, summary, step, start);
   result->details["restarted"] = restart ? "1" : "0";
   if (restart) {
-    // See "Restart" in the header: back along the predictor to the first contact, then turn.
-    StartPoint again = start;
-    const Vec& u = step.base.u;
-    Vec phi;
-    step.model->Gaps(u, &phi);
-    const double floor = std::min(l.nc > 0 ? (-phi).minCoeff() : 0.0, 0.0);
-    auto opens = [&](double t) {
-      step.model->Gaps(u + t * start.du, &phi);
-      return l.nc == 0 || (-phi).minCoeff() >= floor;
-    };
-    double t = 1.0;
-    if (!opens(1.0)) {
-      double lo = 0.0, hi = 1.0;
-      for (int i = 0; i < 40; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (opens(mid) ? lo : hi) = mid;
-      }
-      t = lo;
-    }
-    again.du = t * start.du;
-    const double rest = c.arc_length * c.arc_length - again.du.squaredNorm();
-    again.dlambda =
-        (start.dlambda > 0.0 ? -1.0 : 1.0) * std::sqrt(std::max(rest, 0.0)) / c.lambda_weight;
-    x = MakeStepEquationStart(step, again, l.size());
-    // Reactions of the pairs closed at du0 (g^ <= 1e-8): the least-squares solution of (29),
-    // G_c^T r_c = grad pi(u0) - lambda0 f, clipped to r <= 0, so the start leans on the
-    // contact it has just met instead of sitting at the degenerate g = r = 0.
-    std::vector<int> closed;
-    for (int p = 0; p < l.nc; ++p) {
-      if (x[l.g() + p] <= 1e-8) closed.push_back(p);
-    }
-    if (!closed.empty()) {
-      const Vec u0 = u + again.du;
-      Vec out_of_balance;
-      step.model->InternalForce(u0, &out_of_balance);
-      out_of_balance -= (step.base.lambda + again.dlambda) * step.model->load_pattern();
-      SpMat gap_jacobian;
-      step.model->GapJacobian(u0, &gap_jacobian);
-      const int k = static_cast<int>(closed.size());
-      std::vector<Triplet> pick;
-      pick.reserve(k);
-      for (int j = 0; j < k; ++j) pick.emplace_back(j, closed[j], 1.0);
-      SpMat select(k, l.nc);
-      select.setFromTriplets(pick.begin(), pick.end());
-      const SpMat gc = select * gap_jacobian;  // the closed pairs' rows, k x d, sparse
-      // The normal matrix is only k x k (pairs closed), so a dense factorisation is cheap.
-      const Mat normal = Mat(SpMat(gc * gc.transpose()));
-      const Vec rc = normal.ldlt().solve(gc * out_of_balance);
-      for (int j = 0; j < k; ++j) {
-        if (std::isfinite(rc[j])) x[l.r() + closed[j]] = std::min(rc[j], 0.0) / step.scales.force;
-      }
-    }
-    const SolveCounts first = result->counts;
-    const std::string first_message = result->message;
-    seen.push_back(active_set(x));
-    summary =
-        RunStepEquationSolver(solvers_.For(start), system, &x, controls, result, on_iteration);
-    result->counts.iterations += first.iterations;
-    result->counts.residual_evals += first.residual_evals;
-    result->counts.jacobian_evals += first.jacobian_evals;
-    result->counts.linear_solves += first.linear_solves;
-    result->message = "restarted after: " + first_message + "; then: " + result->message;
+    summary = RunRestart(step, start, controls, solvers_.For(start), system, &track, &x, result);
   }
-  int active = 0;
-  for (bool in : seen.back()) active += in ? 1 : 0;
-  result->details["active_set_size"] = std::to_string(active);
-  result->details["active_set_changes"] = std::to_string(changes);
-  result->details["active_set_revisits"] = std::to_string(revisits);
+  result->details["active_set_size"] = std::to_string(track.size());
+  result->details["active_set_changes"] = std::to_string(track.changes());
+  result->details["active_set_revisits"] = std::to_string(track.revisits());
   result->details["nonsmooth_elements"] = std::to_string(system.nonsmooth_elements());
-  if (summary.status != Status::kConverged && revisits > 0) {
-    result->message += "; the active set revisited an earlier set " + std::to_string(revisits) +
-                       " time(s) (cycling)";
+  if (summary.status != Status::kConverged && track.revisits() > 0) {
+    result->message += "; the active set revisited an earlier set " +
+                       std::to_string(track.revisits()) + " time(s) (cycling)";
   }
 }
 

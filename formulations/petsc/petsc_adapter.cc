@@ -13,6 +13,7 @@
 #include "core/timer.h"
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc/petsc_unused_options.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -300,8 +301,7 @@ PetscErrorCode SnesViConvergenceTest(SNES snes, PetscInt iteration, PetscReal, P
   }
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
   return Guard(run, [&] {
-    run->timed_out =
-        run->controls.time_limit_s > 0.0 && run->clock.Seconds() > run->controls.time_limit_s;
+    run->timed_out = PastTimeLimit(run->controls, run->clock);
     if (run->timed_out || (run->controls.interrupted && run->controls.interrupted())) {
       run->stopped = true;
       *reason = SNES_DIVERGED_FUNCTION_COUNT;  // any divergence stops SNESSolve; see `stopped`

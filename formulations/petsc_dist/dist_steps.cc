@@ -21,6 +21,7 @@
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -496,7 +497,7 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
   }
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
   const SolveControls& c = *o->controls;
-  const bool late = c.time_limit_s > 0.0 && o->clock.Seconds() > c.time_limit_s;
+  const bool late = PastTimeLimit(c, o->clock);
   const bool asked = c.interrupted && c.interrupted();
   o->timed_out = AnyProcess(late);
   o->stopped = o->timed_out || AnyProcess(asked);

@@ -19,6 +19,7 @@
 #include "formulations/siconos/siconos.h"
 #include "formulations/siconos/siconos_adapter.h"
 #include "formulations/siconos/siconos_lcp.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -62,7 +63,7 @@ class SiconosLcpFormulation final : public Formulation {
     const SiconosLcpOutcome outcome = RunSiconosLcp(solver_, options_, lcp.m(), lcp.q(), z0);
     RecordSiconosOutcome(solver_, outcome, result);
     result->point = lcp.PointFromZ(outcome.z);
-    if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) {
+    if (PastTimeLimit(controls, clock)) {
       result->status = Status::kTimeLimit;
       result->message += " (" + TimeLimitMessage(controls.time_limit_s) + ")";
     }
@@ -76,7 +77,7 @@ class SiconosLcpFormulation final : public Formulation {
       result->message = "stopped by the caller before Siconos's call";
       return true;
     }
-    if (controls.time_limit_s > 0.0 && clock.Seconds() > controls.time_limit_s) {
+    if (PastTimeLimit(controls, clock)) {
       result->status = Status::kTimeLimit;
       result->message = TimeLimitMessage(controls.time_limit_s) + " before Siconos's call";
       return true;

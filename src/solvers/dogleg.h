@@ -37,11 +37,36 @@ class DoglegSolver final : public EquationSolver {
                       const IterationCallback& callback = {}) override;
 
  private:
+  // The scalars of the current linear model, valid until a step is accepted (the vectors are
+  // newton_step_, gradient_ = J^T F and j_gradient_ = J g).
+  struct Model {
+    bool have_newton = false;
+    double newton_norm = 0.0;
+    double gradient_norm = 0.0;
+    double cauchy_alpha = 0.0;  // ||g||^2 / ||J g||^2
+    double cauchy_norm = 0.0;   // ||alpha g||
+  };
+
+  // The steps of iteration k, as in Ceres' DoglegStrategy. BuildModel: J at x, the Newton step
+  // (when J can be factorised) and the Cauchy step; false, with the summary finished, when J is
+  // not finite or m is stationary away from a root.
+  bool BuildModel(EquationSystem& system, const Vec& x, int k, double merit,
+                  SolverSummary* summary);
+  // The dogleg step inside `radius` into step_; true when it lies on the boundary.
+  bool Step(double radius);
+  // Evaluates x + step_ into x_trial_, f_trial_ and *trial_merit, and returns rho, the actual
+  // over the predicted reduction (-inf when F cannot be evaluated there).
+  double TrialRatio(EquationSystem& system, const Vec& x, double merit, double* trial_merit,
+                    SolverSummary* summary);
+  // The message of a solve that stagnated at iteration k.
+  std::string Stagnation(int k, bool step_too_small) const;
+
   SolverOptions options_;
   std::unique_ptr<LinearSolver> linear_solver_;
   SpMat jacobian_;
   Vec f_, f_trial_, x_trial_;
   Vec newton_step_, gradient_, j_gradient_, step_, j_step_;
+  Model model_;
 };
 
 }  // namespace cb

@@ -13,18 +13,19 @@ namespace cb {
 NewtonSolver::NewtonSolver(const SolverOptions& options)
     : options_(options), linear_solver_(MakeLinearSolver(options.linear_solver)) {}
 
+bool NewtonSolver::Direction(EquationSystem& system, const Vec& x, bool jacobian_at_x, int k,
+                             double merit, SolverSummary* summary) {
+  const bool jacobian_finite = jacobian_at_x
+                                   ? internal::UseJacobian(x, jacobian_, summary)
+                                   : internal::EvaluateJacobian(system, x, &jacobian_, summary);
+  return internal::NewtonDirection(
+      jacobian_finite, jacobian_, linear_solver_.get(),
+      [this](const Vec& b, Vec* x) { return linear_solver_->Solve(b, x); }, k, merit, f_, &dx_,
+      summary);
+}
+
 SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
                                   const IterationCallback& callback) {
-  using internal::Finish;
-  using internal::FinishStuck;
-  internal::CheckInitialPoint(system, x, name());
-  linear_solver_->SetStructure(system.structure());
-  const int n = system.size();
-  f_.resize(n);
-  dx_.resize(n);
-  x_trial_.resize(n);
-  f_trial_.resize(n);
-
   SolverSummary summary;
   double merit = 0.0;
   // When the system shares work between them, J(x) comes with F(x) from one pass wherever it
@@ -33,42 +34,23 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
   // trial's Jacobian overwrites jacobian_, which the iteration no longer needs once the step is
   // solved for (no second matrix is kept).
   SpMat* const one_pass = system.shares_residual_and_jacobian() ? &jacobian_ : nullptr;
-  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary, one_pass)) {
+  if (internal::BeginSolve(system, x, name(), linear_solver_.get(), {&dx_, &x_trial_, &f_trial_},
+                           options_.residual_tol, &f_, &merit, &summary, one_pass)) {
     return summary;
   }
   bool jacobian_at_x = one_pass != nullptr;
 
   NonmonotoneReference reference(options_.nonmonotone_window, merit);
   for (int k = 1; k <= options_.max_iterations; ++k) {
-    const auto at = [k] { return internal::At(k); };
-    const bool jacobian_finite = jacobian_at_x
-                                     ? internal::UseJacobian(*x, jacobian_, &summary)
-                                     : internal::EvaluateJacobian(system, *x, &jacobian_, &summary);
-    if (!jacobian_finite) {
-      Finish(Status::kFailed, "non-finite Jacobian" + at(), merit, f_, &summary);
-      return summary;
-    }
-    ++summary.linear_solves;
-    if (!linear_solver_->Factorize(jacobian_) || !linear_solver_->Solve(f_, &dx_)) {
-      Finish(Status::kFailed,
-             internal::LinearFailure(*linear_solver_) + at() + ": " + linear_solver_->message(),
-             merit, f_, &summary);
-      return summary;
-    }
-    dx_ = -dx_;
-
+    if (!Direction(system, *x, jacobian_at_x, k, merit, &summary)) return summary;
     double trial_merit = 0.0;
     const internal::LineSearchResult search = internal::BacktrackingLineSearch(
         system, options_, internal::DecreaseTest::kArmijoNewtonSlope, *x, merit,
         reference.Reference(merit), dx_, &x_trial_, &f_trial_, &trial_merit, &summary,
         reference.last_step_full() ? one_pass : nullptr);
     if (!search.accepted) {
-      FinishStuck(
-          system, *x, Status::kFailed,
-          search.too_short
-              ? "stagnation" + at() + ": the line-search step no longer changes x (step_tol)"
-              : "line search failed" + at() + " after " + std::to_string(search.trials) + " trials",
-          merit, f_, options_.residual_tol, &summary);
+      internal::FinishStuck(system, *x, Status::kFailed, internal::SearchFailure(search, k, ""),
+                            merit, f_, options_.residual_tol, &summary);
       return summary;
     }
     *x = x_trial_;
@@ -81,9 +63,7 @@ SolverSummary NewtonSolver::Solve(EquationSystem& system, Vec* x,
       return summary;
     }
   }
-  FinishStuck(system, *x, Status::kLimitReached,
-              "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
-              options_.residual_tol, &summary);
+  internal::FinishAtIterationLimit(system, *x, options_, merit, f_, &summary);
   return summary;
 }
 

@@ -25,6 +25,12 @@ class NewtonSolver final : public EquationSolver {
                       const IterationCallback& callback = {}) override;
 
  private:
+  // Step 1 of iteration k: J at x (evaluated, or already evaluated with F when jacobian_at_x),
+  // factorised, and the Newton direction dx_ = -J^{-1} F. False, with the summary finished,
+  // when J is not finite or the linear solve fails.
+  bool Direction(EquationSystem& system, const Vec& x, bool jacobian_at_x, int k, double merit,
+                 SolverSummary* summary);
+
   SolverOptions options_;
   std::unique_ptr<LinearSolver> linear_solver_;
   // Kept between iterations and solves so that the Jacobian's storage and the linear solver's

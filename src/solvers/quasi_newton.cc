@@ -21,72 +21,77 @@ bool QuasiNewtonSolver::ApplyInverse(const Vec& v, Vec* x) {
   return true;
 }
 
+bool QuasiNewtonSolver::Refresh(EquationSystem& system, const Vec& x, int k, double merit,
+                                SolverSummary* summary) {
+  num_updates_ = 0;
+  const bool jacobian_finite = internal::EvaluateJacobian(system, x, &jacobian_, summary);
+  return internal::NewtonDirection(
+      jacobian_finite, jacobian_, linear_solver_.get(),
+      [this](const Vec& b, Vec* y) { return ApplyInverse(b, y); }, k, merit, f_, &dx_, summary);
+}
+
+bool QuasiNewtonSolver::Search(EquationSystem& system, const Vec& x, int k, double merit,
+                               bool* need_refresh, internal::LineSearchResult* search,
+                               double* trial_merit, SolverSummary* summary) {
+  bool fresh = false;  // dx_ is the Newton direction of a just-factorised J
+  for (;;) {
+    if (*need_refresh) {
+      *need_refresh = false;
+      fresh = true;
+      if (!Refresh(system, x, k, merit, summary)) return false;
+    }
+    *search = internal::BacktrackingLineSearch(
+        system, options_, internal::DecreaseTest::kNormDecrease, x, merit, merit, dx_, &x_trial_,
+        &f_trial_, trial_merit, summary);
+    if (search->accepted) return true;
+    if (fresh) {
+      internal::FinishStuck(
+          system, x, Status::kFailed,
+          internal::SearchFailure(*search, k, " along the Newton direction of a fresh Jacobian"),
+          merit, f_, options_.residual_tol, summary);
+      return false;
+    }
+    // A stale inverse gave a poor direction: retry with the true Jacobian at x.
+    *need_refresh = true;
+  }
+}
+
+bool QuasiNewtonSolver::Update() {
+  // Below this |s^T H y| the Sherman-Morrison denominator is rounding noise.
+  const double update_guard = std::sqrt(std::numeric_limits<double>::epsilon());
+  // The Broyden update and the next direction, from one application of H_k:
+  //   w = H_k F_{k+1},  H_k y_k = w + dx_k  (as H_k F_k = -dx_k),
+  //   dx_{k+1} = -H_{k+1} F_{k+1} = -(w + p_k (s_k^T w)).
+  if (num_updates_ == options_.max_updates || !ApplyInverse(f_, &w_)) return false;
+  hy_ = w_ + dx_;
+  const double denominator = step_.dot(hy_);
+  if (!(std::abs(denominator) > update_guard * step_.norm() * hy_.norm())) return false;
+  p_.col(num_updates_) = (step_ - hy_) / denominator;
+  s_.col(num_updates_) = step_;
+  dx_ = -(w_ + p_.col(num_updates_) * step_.dot(w_));
+  ++num_updates_;
+  return true;
+}
+
 SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
                                        const IterationCallback& callback) {
-  using internal::Finish;
-  using internal::FinishStuck;
-  internal::CheckInitialPoint(system, x, name());
-  linear_solver_->SetStructure(system.structure());
-  const int n = system.size();
-  f_.resize(n);
-  f_trial_.resize(n);
-  x_trial_.resize(n);
-  dx_.resize(n);
-  step_.resize(n);
-  w_.resize(n);
-  hy_.resize(n);
-  p_.resize(n, options_.max_updates);
-  s_.resize(n, options_.max_updates);
-  num_updates_ = 0;
-
   SolverSummary summary;
   double merit = 0.0;
-  if (internal::StartSolve(system, *x, options_.residual_tol, &f_, &merit, &summary)) {
+  p_.resize(system.size(), options_.max_updates);
+  s_.resize(system.size(), options_.max_updates);
+  num_updates_ = 0;
+  if (internal::BeginSolve(system, x, name(), linear_solver_.get(),
+                           {&f_trial_, &x_trial_, &dx_, &step_, &w_, &hy_}, options_.residual_tol,
+                           &f_, &merit, &summary)) {
     return summary;
   }
 
-  // Below this |s^T H y| the Sherman-Morrison denominator is rounding noise.
-  const double update_guard = std::sqrt(std::numeric_limits<double>::epsilon());
   bool need_refresh = true;  // evaluate and factorise J at the current point
-  bool fresh = false;        // dx_ is the Newton direction of a just-factorised J
   for (int k = 1; k <= options_.max_iterations; ++k) {
-    const auto at = [k] { return internal::At(k); };
     internal::LineSearchResult search;
     double trial_merit = 0.0;
-    for (;;) {
-      if (need_refresh) {
-        need_refresh = false;
-        fresh = true;
-        num_updates_ = 0;
-        if (!internal::EvaluateJacobian(system, *x, &jacobian_, &summary)) {
-          Finish(Status::kFailed, "non-finite Jacobian" + at(), merit, f_, &summary);
-          return summary;
-        }
-        ++summary.linear_solves;
-        if (!linear_solver_->Factorize(jacobian_) || !ApplyInverse(f_, &dx_)) {
-          Finish(Status::kFailed,
-                 internal::LinearFailure(*linear_solver_) + at() + ": " + linear_solver_->message(),
-                 merit, f_, &summary);
-          return summary;
-        }
-        dx_ = -dx_;
-      }
-      search = internal::BacktrackingLineSearch(
-          system, options_, internal::DecreaseTest::kNormDecrease, *x, merit, merit, dx_, &x_trial_,
-          &f_trial_, &trial_merit, &summary);
-      if (search.accepted) break;
-      if (fresh) {
-        FinishStuck(
-            system, *x, Status::kFailed,
-            search.too_short
-                ? "stagnation" + at() + ": the line-search step no longer changes x (step_tol)"
-                : "line search failed" + at() + " after " + std::to_string(search.trials) +
-                      " trials along the Newton direction of a fresh Jacobian",
-            merit, f_, options_.residual_tol, &summary);
-        return summary;
-      }
-      // A stale inverse gave a poor direction: retry with the true Jacobian at x.
-      need_refresh = true;
+    if (!Search(system, *x, k, merit, &need_refresh, &search, &trial_merit, &summary)) {
+      return summary;
     }
     step_ = search.step * dx_;
     *x = x_trial_;
@@ -96,29 +101,9 @@ SolverSummary QuasiNewtonSolver::Solve(EquationSystem& system, Vec* x,
                                &summary)) {
       return summary;
     }
-
-    // The Broyden update and the next direction, from one application of H_k:
-    //   w = H_k F_{k+1},  H_k y_k = w + dx_k  (as H_k F_k = -dx_k),
-    //   dx_{k+1} = -H_{k+1} F_{k+1} = -(w + p_k (s_k^T w)).
-    fresh = false;
-    if (num_updates_ == options_.max_updates || !ApplyInverse(f_, &w_)) {
-      need_refresh = true;
-      continue;
-    }
-    hy_ = w_ + dx_;
-    const double denominator = step_.dot(hy_);
-    if (!(std::abs(denominator) > update_guard * step_.norm() * hy_.norm())) {
-      need_refresh = true;
-      continue;
-    }
-    p_.col(num_updates_) = (step_ - hy_) / denominator;
-    s_.col(num_updates_) = step_;
-    dx_ = -(w_ + p_.col(num_updates_) * step_.dot(w_));
-    ++num_updates_;
+    need_refresh = !Update();
   }
-  FinishStuck(system, *x, Status::kLimitReached,
-              "max_iterations (" + std::to_string(options_.max_iterations) + ") reached", merit, f_,
-              options_.residual_tol, &summary);
+  internal::FinishAtIterationLimit(system, *x, options_, merit, f_, &summary);
   return summary;
 }
 

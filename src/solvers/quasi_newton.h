@@ -9,6 +9,7 @@
 #include "solvers/equation_solver.h"
 #include "solvers/equation_system.h"
 #include "solvers/linear_solver.h"
+#include "solvers/solver_common.h"
 
 namespace cb {
 
@@ -41,6 +42,16 @@ class QuasiNewtonSolver final : public EquationSolver {
  private:
   // x = H_k v for the current J0 and the first num_updates_ corrections.
   bool ApplyInverse(const Vec& v, Vec* x);
+  // The steps of iteration k. Refresh: J evaluated at x and factorised, the updates dropped, and
+  // dx_ the Newton direction; false, with the summary finished, when that fails.
+  bool Refresh(EquationSystem& system, const Vec& x, int k, double merit, SolverSummary* summary);
+  // The line search along dx_, refreshing first when *need_refresh and once more when a stale
+  // direction fails; false, with the summary finished, when a fresh direction fails too.
+  bool Search(EquationSystem& system, const Vec& x, int k, double merit, bool* need_refresh,
+              internal::LineSearchResult* search, double* trial_merit, SolverSummary* summary);
+  // After an accepted step step_: the Broyden update and the next direction dx_; false when J
+  // must be refreshed instead (the updates are used up, or the update is ill-conditioned).
+  bool Update();
 
   SolverOptions options_;
   std::unique_ptr<LinearSolver> linear_solver_;

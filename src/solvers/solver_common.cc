@@ -151,6 +151,37 @@ void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::strin
   Finish(status, std::move(message), merit, f, summary);
 }
 
+bool NewtonDirection(bool jacobian_finite, const SpMat& jacobian, LinearSolver* linear_solver,
+                     const std::function<bool(const Vec&, Vec*)>& inverse, int k, double merit,
+                     const Vec& f, Vec* dx, SolverSummary* summary) {
+  if (!jacobian_finite) {
+    Finish(Status::kFailed, "non-finite Jacobian" + At(k), merit, f, summary);
+    return false;
+  }
+  ++summary->linear_solves;
+  if (!linear_solver->Factorize(jacobian) || !inverse(f, dx)) {
+    Finish(Status::kFailed, LinearFailure(*linear_solver) + At(k) + ": " + linear_solver->message(),
+           merit, f, summary);
+    return false;
+  }
+  *dx = -*dx;
+  return true;
+}
+
+std::string SearchFailure(const LineSearchResult& search, int k, const std::string& after) {
+  return search.too_short
+             ? "stagnation" + At(k) + ": the line-search step no longer changes x (step_tol)"
+             : "line search failed" + At(k) + " after " + std::to_string(search.trials) +
+                   " trials" + after;
+}
+
+void FinishAtIterationLimit(EquationSystem& system, const Vec& x, const SolverOptions& options,
+                            double merit, const Vec& f, SolverSummary* summary) {
+  FinishStuck(system, x, Status::kLimitReached,
+              "max_iterations (" + std::to_string(options.max_iterations) + ") reached", merit, f,
+              options.residual_tol, summary);
+}
+
 bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
                 SolverSummary* summary, SpMat* jacobian) {
   const bool evaluated = jacobian != nullptr
@@ -168,6 +199,17 @@ bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* 
     return true;
   }
   return false;
+}
+
+bool BeginSolve(EquationSystem& system, const Vec* x, const std::string& solver,
+                LinearSolver* linear_solver, std::initializer_list<Vec*> work, double residual_tol,
+                Vec* f, double* merit, SolverSummary* summary, SpMat* jacobian) {
+  CheckInitialPoint(system, x, solver);
+  linear_solver->SetStructure(system.structure());
+  const int n = system.size();
+  f->resize(n);
+  for (Vec* v : work) v->resize(n);
+  return StartSolve(system, *x, residual_tol, f, merit, summary, jacobian);
 }
 
 bool EndIteration(int k, double merit, const Vec& f, double step_length, const Vec* x,

@@ -4,11 +4,14 @@
 // MakeEquationSolver.
 #pragma once
 
+#include <functional>
+#include <initializer_list>
 #include <string>
 
 #include "core/types.h"
 #include "solvers/equation_solver.h"
 #include "solvers/equation_system.h"
+#include "solvers/linear_solver.h"
 
 namespace cb {
 namespace internal {
@@ -99,12 +102,35 @@ void Finish(Status status, std::string message, double merit, const Vec& f, Solv
 void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::string message,
                  double merit, const Vec& f, double residual_tol, SolverSummary* summary);
 
+// The Newton direction dx = -J^{-1} F of iteration k once J is evaluated (`jacobian_finite` says
+// whether it is usable): counts the linear solve, factorises J and applies `inverse` (the
+// factorisation's solve, or an inverse built on it) to F. False, with the summary finished,
+// when J is not finite or the factorisation or the solve fails.
+bool NewtonDirection(bool jacobian_finite, const SpMat& jacobian, LinearSolver* linear_solver,
+                     const std::function<bool(const Vec&, Vec*)>& inverse, int k, double merit,
+                     const Vec& f, Vec* dx, SolverSummary* summary);
+
+// Why a line search that accepted no point ended, for FinishStuck: stagnation (the step no
+// longer changes x) or the failure after its trials, with `after` appended to the latter.
+std::string SearchFailure(const LineSearchResult& search, int k, const std::string& after);
+// FinishStuck with kLimitReached when the iteration limit is reached.
+void FinishAtIterationLimit(EquationSystem& system, const Vec& x, const SolverOptions& options,
+                            double merit, const Vec& f, SolverSummary* summary);
+
 // The start of every solve: evaluates F at the initial point into *f and *merit, and records the
 // initial merit. Returns true when the solve is already over: F cannot be evaluated there
 // (kFailed) or it meets residual_tol (kConverged). With jacobian, J(x) is evaluated in the same
 // pass (EvaluateResidualAndJacobian).
 bool StartSolve(EquationSystem& system, const Vec& x, double residual_tol, Vec* f, double* merit,
                 SolverSummary* summary, SpMat* jacobian = nullptr);
+
+// The prologue the solvers share (Newton, dogleg, quasi-Newton): checks the initial point
+// (CheckInitialPoint, naming `solver`), hands the linear solver the system's Jacobian structure,
+// sizes *f and every vector of `work` to the system, then StartSolve. Returns true when the solve
+// is already over (StartSolve).
+bool BeginSolve(EquationSystem& system, const Vec* x, const std::string& solver,
+                LinearSolver* linear_solver, std::initializer_list<Vec*> work, double residual_tol,
+                Vec* f, double* merit, SolverSummary* summary, SpMat* jacobian = nullptr);
 
 // The end of every accepted iteration k: records it, reports it to the callback, and returns
 // true when the solve is over, because ||F||_inf <= residual_tol (kConverged, which wins over a

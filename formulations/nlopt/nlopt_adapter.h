@@ -18,6 +18,7 @@
 
 #include "core/timer.h"
 #include "step/formulation.h"
+#include "step/time_limit.h"
 
 namespace cb {
 
@@ -114,7 +115,7 @@ class NloptRun {
     try {
       if (controls_.interrupted && controls_.interrupted()) {
         stop_reason_ = StopReason::kInterrupted;
-      } else if (controls_.time_limit_s > 0.0 && clock_.Seconds() > controls_.time_limit_s) {
+      } else if (PastTimeLimit(controls_, clock_)) {
         stop_reason_ = StopReason::kTimeLimit;
       }
       if (stop_reason_ != StopReason::kNone) {

@@ -1,143 +1,14 @@
-#include "formulations/ipopt/ipopt_nlp.h"
-
+// `ipopt-mpcc`'s NLP (MpccNlp, ipopt_nlp.h).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
-#include <string>
+#include <vector>
 
-#include "formulations/common/energy_step.h"
+#include "formulations/ipopt/ipopt_colouring.h"
+#include "formulations/ipopt/ipopt_nlp.h"
+#include "formulations/ipopt/ipopt_sparse.h"
 
 namespace cb {
-
-namespace {
-
-// Appends the (row, col) of every stored entry of `m`, in compressed order, offset; with
-// `lower_only` only those on or below the diagonal of the result.
-void AppendEntries(const SpMat& m, int row_offset, int col_offset, bool transpose, bool lower_only,
-                   std::vector<int>* rows, std::vector<int>* cols) {
-  for (int j = 0; j < m.outerSize(); ++j) {
-    for (SpMat::InnerIterator it(m, j); it; ++it) {
-      int r = static_cast<int>(it.row()) + row_offset;
-      int c = j + col_offset;
-      if (transpose) {
-        r = j + row_offset;
-        c = static_cast<int>(it.row()) + col_offset;
-      }
-      if (lower_only && r < c) continue;
-      rows->push_back(r);
-      cols->push_back(c);
-    }
-  }
-}
-
-// Writes scale * (entries of m) at values[*k...], in the order AppendEntries listed them.
-void FillEntries(const SpMat& m, double scale, bool lower_only, double* values, int* k) {
-  for (int j = 0; j < m.outerSize(); ++j) {
-    for (SpMat::InnerIterator it(m, j); it; ++it) {
-      if (lower_only && it.row() < j) continue;
-      values[(*k)++] = scale * it.value();
-    }
-  }
-}
-
-// Index of entry (i, j) in m's compressed storage, -1 when not stored.
-int FindEntry(const SpMat& m, int i, int j) {
-  const int* inner = m.innerIndexPtr();
-  const int* begin = inner + m.outerIndexPtr()[j];
-  const int* end = inner + m.outerIndexPtr()[j + 1];
-  const int* it = std::lower_bound(begin, end, i);
-  if (it == end || *it != i) return -1;
-  return static_cast<int>(it - inner);
-}
-
-bool AllFinite(const Vec& v) { return v.allFinite(); }
-
-}  // namespace
-
-// --- ipopt-energy --------------------------------------------------------------------------
-
-EnergyNlp::EnergyNlp(const StepProblem& step) : step_(step) {
-  step.Validate();
-  std::string why;
-  if (!IsEnergyStep("ipopt-energy", step, &why)) throw std::invalid_argument(why);
-  const ContactModel& model = *step.model;
-  const int d = model.num_dofs();
-  const int nc = model.num_pairs();
-  length_ = step.scales.length;
-  force_ = step.scales.force;
-  lambda_ = step.constraint.target;
-  u_ = step.base.u;
-  model.Stiffness(u_, &stiffness_);
-  model.GapJacobian(u_, &gap_jacobian_);
-  model.GapCurvature(u_, Vec::Zero(nc), &curvature_);
-  nnz_stiffness_ = stiffness_.nonZeros();
-  nnz_gap_ = gap_jacobian_.nonZeros();
-  nnz_curvature_ = curvature_.nonZeros();
-
-  x_lower_ = Vec::Constant(d, -kInfinity);
-  x_upper_ = Vec::Constant(d, kInfinity);
-  c_lower_ = Vec::Constant(nc, -kInfinity);  // phi / L <= 0, i.e. g >= 0
-  c_upper_ = Vec::Zero(nc);
-  AppendEntries(gap_jacobian_, 0, 0, false, false, &jacobian_rows_, &jacobian_cols_);
-  AppendEntries(stiffness_, 0, 0, false, true, &hessian_rows_, &hessian_cols_);
-  AppendEntries(curvature_, 0, 0, false, true, &hessian_rows_, &hessian_cols_);
-}
-
-const Vec& EnergyNlp::U(const Vec& x) {
-  u_ = step_.base.u + length_ * x;
-  return u_;
-}
-
-bool EnergyNlp::Objective(const Vec& x, double* f) {
-  const Vec& u = U(x);
-  const ContactModel& model = *step_.model;
-  *f = (model.Energy(u) - lambda_ * model.load_pattern().dot(u)) / (force_ * length_);
-  return std::isfinite(*f);
-}
-
-bool EnergyNlp::Gradient(const Vec& x, Vec* gradient) {
-  const Vec& u = U(x);
-  step_.model->InternalForce(u, &work_);
-  // d/dx = L d/du: (grad pi - lambda f) L / (R L), the residual of (9) without reactions, / R.
-  *gradient = (work_ - lambda_ * step_.model->load_pattern()) / force_;
-  return AllFinite(*gradient);
-}
-
-bool EnergyNlp::Constraints(const Vec& x, Vec* c) {
-  const Vec& u = U(x);
-  step_.model->Gaps(u, &work_);
-  *c = work_ / length_;
-  return AllFinite(*c);
-}
-
-bool EnergyNlp::JacobianValues(const Vec& x, Vec* values) {
-  const Vec& u = U(x);
-  step_.model->GapJacobian(u, &gap_jacobian_);
-  if (gap_jacobian_.nonZeros() != nnz_gap_) return false;
-  values->resize(static_cast<int>(jacobian_rows_.size()));
-  int k = 0;
-  // d(phi / L)/dx = grad phi (L / L).
-  FillEntries(gap_jacobian_, 1.0, false, values->data(), &k);
-  return AllFinite(*values);
-}
-
-bool EnergyNlp::HessianValues(const Vec& x, double sigma, const Vec& y, Vec* values) {
-  const Vec& u = U(x);
-  step_.model->Stiffness(u, &stiffness_);
-  step_.model->GapCurvature(u, y, &curvature_);
-  if (stiffness_.nonZeros() != nnz_stiffness_ || curvature_.nonZeros() != nnz_curvature_) {
-    return false;
-  }
-  values->resize(static_cast<int>(hessian_rows_.size()));
-  int k = 0;
-  // sigma L^2 hess pi / (R L) + sum_p y_p L^2 hess phi_p / L.
-  FillEntries(stiffness_, sigma * length_ / force_, true, values->data(), &k);
-  FillEntries(curvature_, length_, true, values->data(), &k);
-  return AllFinite(*values);
-}
-
-// --- ipopt-mpcc ----------------------------------------------------------------------------
 
 const char* ToString(MpccReformulation reformulation) {
   return reformulation == MpccReformulation::kScholtes ? "scholtes" : "penalty";
@@ -170,22 +41,28 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
   nnz_curvature_ = curvature_.nonZeros();
   curved_ = nnz_curvature_ > 0;
 
+  BuildJointPattern();
+  SetBounds();
+  AppendJacobianStructure();
+  AppendHessianStructure();
+}
+
+void MpccNlp::BuildJointPattern() {
   // Joint symmetric pattern of stiffness (and its transpose) and curvature.
-  {
-    std::vector<Triplet> t;
-    for (int j = 0; j < stiffness_.outerSize(); ++j) {
-      for (SpMat::InnerIterator it(stiffness_, j); it; ++it) {
-        t.emplace_back(it.row(), j, 1.0);
-        t.emplace_back(j, it.row(), 1.0);
-      }
+  std::vector<Triplet> t;
+  for (int j = 0; j < stiffness_.outerSize(); ++j) {
+    for (SpMat::InnerIterator it(stiffness_, j); it; ++it) {
+      t.emplace_back(it.row(), j, 1.0);
+      t.emplace_back(j, it.row(), 1.0);
     }
-    for (int j = 0; j < curvature_.outerSize(); ++j) {
-      for (SpMat::InnerIterator it(curvature_, j); it; ++it) t.emplace_back(it.row(), j, 1.0);
-    }
-    joint_.resize(d_, d_);
-    joint_.setFromTriplets(t.begin(), t.end());
-    joint_.makeCompressed();
   }
+  for (int j = 0; j < curvature_.outerSize(); ++j) {
+    for (SpMat::InnerIterator it(curvature_, j); it; ++it) t.emplace_back(it.row(), j, 1.0);
+  }
+  joint_.resize(d_, d_);
+  joint_.setFromTriplets(t.begin(), t.end());
+  joint_.makeCompressed();
+
   const int nnz_joint = static_cast<int>(joint_.nonZeros());
   joint_transpose_.assign(nnz_joint, -1);
   joint_lower_slot_.assign(nnz_joint, -1);
@@ -200,29 +77,12 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
       curvature_to_joint_.push_back(FindEntry(joint_, static_cast<int>(it.row()), j));
     }
   }
-  // Greedy distance-2 colouring of the joint pattern's columns: two columns share a colour
-  // only when no row has entries in both, so one central difference serves them all.
+  // The colouring of the finite differences (ThirdOrderTerm); none for a linear model.
   colour_.assign(d_, -1);
-  num_colours_ = 0;
-  if (!linear_) {
-    std::vector<int> mark(d_ + 1, -1);
-    const int* outer = joint_.outerIndexPtr();
-    const int* inner = joint_.innerIndexPtr();
-    for (int j = 0; j < d_; ++j) {
-      for (int a = outer[j]; a < outer[j + 1]; ++a) {
-        const int i = inner[a];  // row i of column j; by symmetry column i lists row i's columns
-        for (int b = outer[i]; b < outer[i + 1]; ++b) {
-          const int c = colour_[inner[b]];
-          if (c >= 0) mark[c] = j;
-        }
-      }
-      int c = 0;
-      while (mark[c] == j) ++c;
-      colour_[j] = c;
-      num_colours_ = std::max(num_colours_, c + 1);
-    }
-  }
+  num_colours_ = linear_ ? 0 : ColourColumns(joint_, &colour_);
+}
 
+void MpccNlp::SetBounds() {
   // Bounds (11): g^ >= 0, r^ <= 0; the kink pair fixed at 0 (see the class comment).
   const int n = d_ + 2 * nc_ + 1;
   x_lower_ = Vec::Constant(n, -kInfinity);
@@ -230,7 +90,7 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
   x_lower_.segment(ix_g(), nc_).setZero();
   x_upper_.segment(ix_r(), nc_).setZero();
   if (!has_step_row_) {
-    const int p = step.constraint.index;
+    const int p = step_.constraint.index;
     x_upper_[ix_g() + p] = 0.0;
     x_lower_[ix_r() + p] = 0.0;
   }
@@ -241,8 +101,10 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
     c_lower_.tail(nc_).setConstant(-kInfinity);
     c_upper_.tail(nc_).setConstant(relaxation_);
   }
+}
 
-  // Jacobian structure, in the order JacobianValues fills it.
+void MpccNlp::AppendJacobianStructure() {
+  // In the order JacobianValues fills it.
   auto& jr = jacobian_rows_;
   auto& jc = jacobian_cols_;
   AppendEntries(stiffness_, 0, ix_u(), false, false, &jr, &jc);    // dF1/dx_u, stiffness
@@ -258,7 +120,7 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
     jc.push_back(ix_g() + p);
   }
   if (has_step_row_) {
-    const StepConstraint& c = step.constraint;
+    const StepConstraint& c = step_.constraint;
     switch (c.kind) {
       case ConstraintKind::kArcLength:
       case ConstraintKind::kHyperplane:
@@ -289,8 +151,10 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
       jc.push_back(ix_r() + p);
     }
   }
+}
 
-  // Hessian structure (lower triangle), in the order HessianValues fills it.
+void MpccNlp::AppendHessianStructure() {
+  // The lower triangle, in the order HessianValues fills it.
   auto& hr = hessian_rows_;
   auto& hc = hessian_cols_;
   for (int j = 0; j < d_; ++j) {
@@ -302,7 +166,7 @@ MpccNlp::MpccNlp(const StepProblem& step, MpccReformulation reformulation, doubl
       hc.push_back(j);
     }
   }
-  if (has_step_row_ && step.constraint.kind == ConstraintKind::kArcLength) {
+  if (has_step_row_ && step_.constraint.kind == ConstraintKind::kArcLength) {
     for (int j = 0; j < d_; ++j) {
       hr.push_back(j);
       hc.push_back(j);
@@ -350,7 +214,7 @@ bool MpccNlp::Gradient(const Vec& x, Vec* gradient) {
     gradient->segment(ix_g(), nc_) = -penalty_weight_ * x.segment(ix_r(), nc_);
     gradient->segment(ix_r(), nc_) = -penalty_weight_ * x.segment(ix_g(), nc_);
   }
-  return AllFinite(*gradient);
+  return gradient->allFinite();
 }
 
 bool MpccNlp::Constraints(const Vec& x, Vec* c) {
@@ -374,7 +238,7 @@ bool MpccNlp::Constraints(const Vec& x, Vec* c) {
   if (reformulation_ == MpccReformulation::kScholtes) {
     c->segment(row_scholtes(), nc_) = -g.cwiseProduct(r);  // -g^_p r^_p <= t
   }
-  return AllFinite(*c);
+  return c->allFinite();
 }
 
 bool MpccNlp::JacobianValues(const Vec& x, Vec* values) {
@@ -423,7 +287,7 @@ bool MpccNlp::JacobianValues(const Vec& x, Vec* values) {
       v[k++] = -g[p];
     }
   }
-  return AllFinite(*values);
+  return values->allFinite();
 }
 
 bool MpccNlp::ThirdOrderTerm(const Vec& x, const Vec& y, Vec* joint_values) {
@@ -536,7 +400,7 @@ bool MpccNlp::HessianValues(const Vec& x, double sigma, const Vec& y, Vec* value
     v[k++] = reformulation_ == MpccReformulation::kScholtes ? -y[row_scholtes() + p]
                                                             : -sigma * penalty_weight_;
   }
-  return AllFinite(*values);
+  return values->allFinite();
 }
 
 }  // namespace cb

@@ -1,4 +1,4 @@
-#include "formulations/nlopt/nlopt_run.h"
+#include "formulations/nlopt/nlopt_adapter.h"
 
 #include <new>
 #include <sstream>
