@@ -3,6 +3,8 @@
 // factorisation's read only when it first factors) run as before.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 
@@ -14,8 +16,11 @@ namespace {
 
 using cb::testing_support::RunContactbench;
 
+// Each test (ctest runs them in parallel) and each process its own --out.
 cb::testing_support::CliOutcome RunWith(const std::string& options) {
-  const auto out = std::filesystem::temp_directory_path() / "contactbench_petsc_unused_options";
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto out = std::filesystem::temp_directory_path() /
+                   ("contactbench_petsc_unused_options_" + test + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(out);
   const auto outcome = RunContactbench(
       "run --problem two-bar --formulation petsc-rsls --steps 3 "
