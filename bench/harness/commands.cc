@@ -59,7 +59,8 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.locate_kinks = a.locate_kinks;
   options.bifurcations = a.bifurcations;
   options.controls.time_limit_s = a.time_limit;
-  options.controls.interrupted = [] { return InterruptRequested(); };
+  // Agreed among the processes of a distributed run (process_agreement.h).
+  options.controls.interrupted = [] { return InterruptedOnAnyProcess(); };
   return options;
 }
 
@@ -378,20 +379,28 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   std::vector<PathObserver*> watching{&agreed};
   if (snapshots) watching.push_back(&*snapshots);
   ObserverTee observers(watching);
-  const PathSummary summary = [&] {
+  // Whatever ends the path (a failure on another process of a distributed run among them),
+  // run.json counts the records written (issue 30: counts of 0 beside 66-92 rows of steps.csv).
+  record->runs = 1;
+  const auto count_records = [&] {
+    record->attempts = recorder.attempts();
+    record->accepted_steps = recorder.accepted();
+  };
+  PathSummary summary;
+  try {
     const Activity solving("solving");
-    return TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
-  }();
-  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
-  {
+    summary = TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
+    if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
     const Activity writing("writing the final state");
     // The snapshot first: in a distributed run the last step all processes take together.
     if (snapshots) snapshots->Save(summary.final_state, summary.accepted_steps, "final");
     OnEveryProcess("writing the final state", [&] {
       WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
     });
+  } catch (...) {
+    count_records();
+    throw;
   }
-  record->runs = 1;
   record->attempts = summary.attempts;
   record->accepted_steps = summary.accepted_steps;
   record->kinks = summary.kinks;
