@@ -294,6 +294,53 @@ TEST(InterruptTest, AnInterruptDuringTheNearStartsReferenceSolveExits4) {
   std::filesystem::remove_all(dir);
 }
 
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+// hertz-3d with E = 1e20 falls back from the condensed Cholesky to KLU, whose factorisation of
+// the 3-D system takes minutes: a SIGTERM during it acts in seconds (solvers/interruptible_klu.h;
+// before, it took 73 s), and the run ends as an interrupted one, its run.json written.
+TEST(InterruptTest, ASigtermDuringALongFactorisationActsInSeconds) {
+  const auto dir = TempDir("factorisation");
+  std::filesystem::create_directories(dir);
+  const auto out = dir / "out";
+  const pid_t pid = Start({"run", "--problem", "hertz-3d", "--set", "youngs_modulus=1e20",
+                           "--formulation", "implicit-fb", "--out", out.string()},
+                          dir / "log.txt");
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(WaitForFile(pid, out / ".contactbench.lock")) << ReadText(dir / "log.txt");
+  // Wait for the factorisation's worker thread (named: solvers/interruptible_klu.h), after the
+  // condensed Cholesky's attempt (tens of seconds on a loaded machine), then give it a second.
+  const auto worker_running = [pid] {
+    const auto tasks = std::filesystem::path("/proc") / std::to_string(pid) / "task";
+    std::error_code ec;
+    for (const auto& task : std::filesystem::directory_iterator(tasks, ec)) {
+      if (ReadText(task.path() / "comm").rfind("klu-factor", 0) == 0) return true;
+    }
+    return false;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(240);
+  while (!worker_running() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(worker_running()) << "no factorisation on a worker thread\n"
+                                << ReadText(dir / "log.txt");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  const auto sent = std::chrono::steady_clock::now();
+  const int raw = Wait(pid);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  const std::string said = ReadText(dir / "log.txt");
+  ASSERT_TRUE(WIFEXITED(raw)) << raw << "\n" << said;
+  EXPECT_EQ(WEXITSTATUS(raw), 4) << said;
+  EXPECT_LT(seconds, 15.0) << said;
+  const auto run = nlohmann::json::parse(ReadText(out / "run.json"));
+  EXPECT_EQ(run["exit_status"], 4) << run.dump();
+  // The abandoned solve is recorded as stopped, not as a failed step.
+  EXPECT_NE(ReadText(out / "steps.csv").find("stopped_by_caller"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+#endif
+
 // A second run into the directory of a running one is refused before it writes anything, and
 // names the first one's pid; the first one's records stay its own.
 TEST(InterruptTest, ASecondRunIntoTheSameDirectoryIsRefused) {

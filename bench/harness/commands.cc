@@ -1,6 +1,8 @@
 #include "harness/commands.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -57,7 +59,8 @@ PathOptions MakePathOptions(const RunArguments& a, const Problem& problem) {
   options.locate_kinks = a.locate_kinks;
   options.bifurcations = a.bifurcations;
   options.controls.time_limit_s = a.time_limit;
-  options.controls.interrupted = [] { return InterruptRequested(); };
+  // Agreed among the processes of a distributed run (process_agreement.h).
+  options.controls.interrupted = [] { return InterruptedOnAnyProcess(); };
   return options;
 }
 
@@ -81,27 +84,85 @@ void PrepareOutput(const std::string& dir) {
 
 namespace {
 
-// The memory `model` needs by the model of memory_budget.h: each pair acts on at most two dofs
-// (a node against a half-space in the plane).
-MemoryEstimate EstimateOf(double dofs, double pairs) {
-  return {dofs, pairs, std::min(dofs, 2.0 * pairs)};
+// Whether the run factorises directly: every formulation but a dist-* one given `linear=amg`
+// (compare's formulations are taken as direct, the larger estimate).
+bool FactorisesDirectly(const RunArguments& a) {
+  if (a.formulation.rfind("dist-", 0) != 0) return true;
+  for (const std::string& owner : {std::string(), a.formulation}) {
+    const auto options = a.options.find(owner);
+    if (options == a.options.end()) continue;
+    const auto linear = options->second.find("linear");
+    if (linear != options->second.end() && linear->second == "amg") return false;
+  }
+  return true;
 }
 
-// The size of the block (P1) known before it is built: (n+1)^2 nodes of 2 dofs, and 2(n+1)
-// pairs on the wall and the floor (problems/block.cc). The other named problems are trusses
-// too small to matter before they are built.
-std::optional<MemoryEstimate> PredictedEstimate(const RunArguments& a) {
-  if (!a.problem_file.empty() || a.problem != "block") return std::nullopt;
-  const auto n = a.settings.find("n");
-  if (n == a.settings.end()) return std::nullopt;  // the default, 50, is small
-  double cells = 0.0;
-  try {
-    cells = std::stod(n->second);
-  } catch (const std::exception&) {
-    return std::nullopt;  // refused by the problem's own check, with its message
+// The memory of a model of `dofs` unknowns and `pairs` pairs in `dim` dimensions by the model
+// of memory_budget.h: each pair acts on at most `dim` dofs (a node against an obstacle); in
+// 3-D a direct factor fills by a top separator of `separator_nodes` nodes.
+MemoryEstimate EstimateOf(const RunArguments& a, double dofs, double pairs, int dim,
+                          double separator_nodes) {
+  MemoryEstimate estimate{dofs, pairs, std::min(dofs, dim * pairs)};
+  if (dim == 3 && FactorisesDirectly(a)) estimate.fill = DirectFill3d(dofs, separator_nodes);
+  estimate.processes = LaunchedProcesses();
+  return estimate;
+}
+
+// An integer size of --set, or the named problem's default; nothing when the setting is not
+// digits of at most 7 ("1e3" is no integer: the problem's own check refuses it, with its
+// message).
+std::optional<double> SizeSetting(const RunArguments& a, const std::string& name) {
+  const auto set = a.settings.find(name);
+  if (set == a.settings.end()) {
+    for (const auto& info : ProblemRegistry()) {
+      if (info.name == a.problem) return info.defaults().Integer(name);
+    }
+    return std::nullopt;
   }
-  if (!(cells >= 0.0 && cells <= 1e6)) return std::nullopt;
-  return EstimateOf(2.0 * (cells + 1.0) * (cells + 1.0), 2.0 * (cells + 1.0));
+  const std::string& text = set->second;
+  if (text.empty() || text.size() > 7 ||
+      !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  return std::stod(text);
+}
+
+// The size of the named problems with a mesh, known before they are built: the block (P1,
+// problems/block.cc), (n+1)^2 nodes of 2 dofs and 2(n+1) pairs on the wall and the floor; the
+// 3-D boxes (problems/hertz.cc, plate.cc), (nx+1)(ny+1)(nz+1) nodes of 3 dofs and a bottom
+// face of pairs, whose top separator is the two smaller sides. The other named problems are
+// trusses too small to matter before they are built.
+std::optional<MemoryEstimate> PredictedEstimate(const RunArguments& a) {
+  if (!a.problem_file.empty()) return std::nullopt;
+  if (a.problem == "block") {
+    if (!a.settings.contains("n")) return std::nullopt;  // the default, 50, is small
+    const auto n = SizeSetting(a, "n");
+    if (!n) return std::nullopt;
+    return EstimateOf(a, 2.0 * (*n + 1.0) * (*n + 1.0), 2.0 * (*n + 1.0), 2, 0.0);
+  }
+  const bool hertz = a.problem == "hertz-3d";
+  if (!hertz && a.problem != "plate-3d") return std::nullopt;
+  const auto nx = SizeSetting(a, hertz ? "n" : "nx");
+  const auto ny = SizeSetting(a, hertz ? "n" : "ny");
+  const auto nz = SizeSetting(a, "nz");
+  if (!nx || !ny || !nz) return std::nullopt;
+  std::array<double, 3> nodes{*nx + 1.0, *ny + 1.0, *nz + 1.0};
+  std::sort(nodes.begin(), nodes.end());
+  return EstimateOf(a, 3.0 * nodes[0] * nodes[1] * nodes[2], (*nx + 1.0) * (*ny + 1.0), 3,
+                    nodes[0] * nodes[1]);
+}
+
+// The estimate of a built problem: a body's dimension and nodes; a 3-D mesh's separator taken
+// as a cube's, N^(2/3) of its N nodes, unless the box's own was predicted.
+MemoryEstimate BuiltEstimate(const RunArguments& a, const Problem& problem) {
+  const double dofs = problem.model->num_dofs(), pairs = problem.model->num_pairs();
+  const int dim = problem.body ? problem.body->body().dim() : 2;
+  if (const auto predicted = PredictedEstimate(a); predicted && dim == 3) {
+    const double separator = std::pow(predicted->fill / std::max(predicted->dofs, 1.0), 2.0);
+    return EstimateOf(a, dofs, pairs, dim, separator);
+  }
+  const double nodes = problem.body ? problem.body->body().num_nodes() : dofs;
+  return EstimateOf(a, dofs, pairs, dim, std::pow(nodes, 2.0 / 3.0));
 }
 
 // The parameters --set may change: a named problem's declared ones, a problem file's as
@@ -160,8 +221,7 @@ Problem LoadProblem(const RunArguments& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what() + SettingSuggestion(a));
   }
-  CheckMemory(EstimateOf(problem.model->num_dofs(), problem.model->num_pairs()), what,
-              a.allow_memory);
+  CheckMemory(BuiltEstimate(a, problem), what, a.allow_memory);
   return problem;
 }
 
@@ -319,20 +379,28 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   std::vector<PathObserver*> watching{&agreed};
   if (snapshots) watching.push_back(&*snapshots);
   ObserverTee observers(watching);
-  const PathSummary summary = [&] {
+  // Whatever ends the path (a failure on another process of a distributed run among them),
+  // run.json counts the records written (issue 30: counts of 0 beside 66-92 rows of steps.csv).
+  record->runs = 1;
+  const auto count_records = [&] {
+    record->attempts = recorder.attempts();
+    record->accepted_steps = recorder.accepted();
+  };
+  PathSummary summary;
+  try {
     const Activity solving("solving");
-    return TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
-  }();
-  if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
-  {
+    summary = TraceProblem(problem, formulation, options, &observers, near ? &*near : nullptr);
+    if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();
     const Activity writing("writing the final state");
     // The snapshot first: in a distributed run the last step all processes take together.
     if (snapshots) snapshots->Save(summary.final_state, summary.accepted_steps, "final");
     OnEveryProcess("writing the final state", [&] {
       WriteFinalState(target, problem, summary.final_state, summary.accepted_steps);
     });
+  } catch (...) {
+    count_records();
+    throw;
   }
-  record->runs = 1;
   record->attempts = summary.attempts;
   record->accepted_steps = summary.accepted_steps;
   record->kinks = summary.kinks;

@@ -4,6 +4,8 @@
 #include <csignal>
 #include <string>
 
+#include "core/interrupt_poll.h"
+
 namespace cb::harness {
 
 namespace {
@@ -16,6 +18,8 @@ extern "C" void OnSignal(int) { g_interrupted.store(true); }
 void InstallInterruptHandlers() {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  // And for the library's long factorisations (core/interrupt_poll.h).
+  SetInterruptPoll(InterruptRequested);
 }
 
 InterruptScope::InterruptScope() {

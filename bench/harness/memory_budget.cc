@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -65,17 +66,47 @@ thread_local const char* g_activity = nullptr;
 }  // namespace
 
 double MemoryEstimate::bytes() const {
-  return kBaseBytes + kBytesPerUnknown * dofs +
-         kBytesPerContactDofSquared * contact_dofs * contact_dofs;
+  const double work = kBytesPerUnknown * dofs +
+                      kBytesPerContactDofSquared * contact_dofs * contact_dofs +
+                      kBytesPerFill * fill;
+  return processes * kBaseBytes + (1.0 + kExtraPerProcess * (processes - 1.0)) * work;
 }
 
 std::string MemoryEstimate::Describe() const {
   std::ostringstream text;
-  text << Gib(bytes()) << " (" << static_cast<long long>(dofs) << " unknowns x "
-       << kBytesPerUnknown / 1024.0 << " KiB + " << static_cast<long long>(contact_dofs)
-       << " contact dofs squared x " << kBytesPerContactDofSquared << " B + "
-       << kBaseBytes / (1024.0 * 1024.0) << " MiB)";
+  text << Gib(bytes()) << " (";
+  if (processes > 1.0) {
+    text << processes << " processes x " << kBaseBytes / (1024.0 * 1024.0) << " MiB + "
+         << 1.0 + kExtraPerProcess * (processes - 1.0) << " x (";
+  }
+  text << static_cast<long long>(dofs) << " unknowns x " << kBytesPerUnknown / 1024.0 << " KiB + "
+       << static_cast<long long>(contact_dofs) << " contact dofs squared x "
+       << kBytesPerContactDofSquared << " B";
+  if (fill > 0.0) {
+    text << " + a 3-D direct factor's fill " << std::llround(fill) << " x " << kBytesPerFill
+         << " B";
+  }
+  if (processes > 1.0) {
+    text << ")";
+  } else {
+    text << " + " << kBaseBytes / (1024.0 * 1024.0) << " MiB";
+  }
+  text << ")";
   return text.str();
+}
+
+double DirectFill3d(double dofs, double separator_nodes) {
+  return dofs * std::sqrt(std::max(separator_nodes, 1.0));
+}
+
+double LaunchedProcesses() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    if (const char* value = std::getenv(name)) {
+      const double count = std::strtod(value, nullptr);
+      if (count >= 1.0 && count <= 1e6) return count;
+    }
+  }
+  return 1.0;
 }
 
 std::optional<MemoryLimit> AvailableMemory() {

@@ -13,19 +13,38 @@ namespace cb::harness {
 
 // The memory of a run on a model of `dofs` unknowns and `pairs` contact pairs: the sparse
 // factorisations and the records grow with the unknowns, the dense contact block of the
-// condensed solver (contact_block_factor.h) with the square of the contact dofs.
+// condensed solver (contact_block_factor.h) with the square of the contact dofs, and a direct
+// factorisation of a 3-D mesh with its fill: nested dissection of a mesh whose top separator
+// has s nodes fills O(dofs sqrt(s)) entries (s = n^2 on an n^3 cube: O(dofs^(4/3))), where a
+// 2-D mesh's O(dofs log dofs) is within the per-unknown term. Each process of a distributed
+// run holds the whole model (kExtraPerProcess); the factor is shared out among them.
 struct MemoryEstimate {
   double dofs = 0.0;
   double pairs = 0.0;
   double contact_dofs = 0.0;  // the dofs the pairs act on (at most dofs)
+  double fill = 0.0;          // dofs x sqrt(s) of a direct factor in 3-D; 0 otherwise
+  double processes = 1.0;     // of a distributed run
   double bytes() const;
   std::string Describe() const;  // "2.1 GiB (181202 unknowns x 3.5 KiB + ...)"
 };
-// Bytes per unknown and per contact dof squared of MemoryEstimate::bytes() (measured on P1:
-// docs/hardening.md).
+// Bytes per unknown, per contact dof squared and per unit of fill of MemoryEstimate::bytes()
+// (measured on P1 and on hertz-3d: docs/hardening.md, "Memory").
 constexpr double kBytesPerUnknown = 3.5 * 1024.0;
 constexpr double kBytesPerContactDofSquared = 4.0 * 8.0;
+constexpr double kBytesPerFill = 420.0;
 constexpr double kBaseBytes = 64.0 * 1024.0 * 1024.0;
+// The work of a distributed run grows by this much per process beyond the first (the replicated
+// model and vectors; two processes took 1.2-1.7 times one's memory: docs/scale-out.md).
+constexpr double kExtraPerProcess = 0.5;
+
+// The fill term of a direct factorisation of a 3-D mesh of `dofs` unknowns whose top separator
+// has `separator_nodes` nodes: for a box of a x b x c nodes, the product of the two smallest;
+// for an unstructured mesh of N nodes, a cube's N^(2/3).
+double DirectFill3d(double dofs, double separator_nodes);
+
+// The processes of the run as the launcher says (OMPI_COMM_WORLD_SIZE, PMI_SIZE), known
+// before MPI starts; 1 without a launcher.
+double LaunchedProcesses();
 
 // What the process may still take: the least of MemAvailable (/proc/meminfo), the memory
 // cgroup's limit less its usage, and RLIMIT_AS less the current virtual size. The variable

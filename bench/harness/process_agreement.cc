@@ -8,6 +8,7 @@
 
 #include "core/csv.h"
 #include "formulations/petsc_dist/petsc_dist.h"
+#include "harness/interrupt.h"
 #include "harness/output_directory.h"
 
 #ifdef CONTACTBENCH_HAVE_PETSC
@@ -29,6 +30,15 @@ int LowestFailing(bool failed) {
 #endif
   return lowest;
 }
+
+}  // namespace
+
+bool InterruptedOnAnyProcess() {
+  if (!Distributed()) return InterruptRequested();
+  return LowestFailing(InterruptRequested()) != INT_MAX;
+}
+
+namespace {
 
 // The failure word of process 0 when it does not say how it ends: exit status 3.
 constexpr int kFailedWord = 3;

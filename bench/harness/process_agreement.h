@@ -17,6 +17,14 @@ namespace cb::harness {
 // std::runtime_error naming the lowest failing process and `what` it was doing.
 void OnEveryProcess(const std::string& what, const std::function<void()>& work);
 
+// Whether SIGINT or SIGTERM reached any process (a collective in a distributed run; with one
+// process, InterruptRequested()). The path driver's decision to stop before a solve or after a
+// step is then the same on every process: a signal to one process alone made it skip a solve
+// the others entered, and their collectives then paired with the wrong ones (a failure, and
+// run.json's counts at 0 beside the rows of steps.csv; issue 30). Every process must ask at
+// the same points, as the path driver does (SolveControls::interrupted).
+bool InterruptedOnAnyProcess();
+
 // Process 0's records of the path, agreed with the other processes at every event: each
 // process of a distributed run wraps its own writer (process 0 its records, the others
 // nothing, `records` null) so that every event is one OnEveryProcess, at the same point of the

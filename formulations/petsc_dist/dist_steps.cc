@@ -14,6 +14,7 @@
 
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
+#include "formulations/petsc/petsc_unused_options.h"
 #include "formulations/petsc_dist/dist_line_search.h"
 #include "formulations/petsc_dist/element_partition.h"
 #include "formulations/petsc_dist/field_split.h"
@@ -519,6 +520,7 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
 
 DistributedSteps::DistributedSteps(const std::string& defaults, const std::string& user_options)
     : options_(user_options.empty() ? defaults : defaults + " " + user_options),
+      user_options_(user_options),
       objects_(std::make_unique<Objects>()) {
   StartPetsc();
   if (DistributedSize() > 1) RequireParallelLibraries();
@@ -639,6 +641,25 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
     result->message = std::string("PETSc SNESSolve failed: ") + (text != nullptr ? text : "");
     o.DestroyOperands();
   }
+  RefuseUnusedOptions(code);
+}
+
+// PETSc reads most options when it sets the objects up in the first solve that iterates (a
+// factorisation's when it first factors); an option still unread then never acts. Every
+// process takes part in the agreement and every process throws, so that no process is left
+// in a collective the others have left (issue 30).
+void DistributedSteps::RefuseUnusedOptions(int code) {
+  if (options_checked_ || user_options_.empty()) return;
+  PetscInt iterations = 0;
+  const bool iterated =
+      code == 0 && SNESGetIterationNumber(objects_->snes, &iterations) == 0 && iterations > 0;
+  if (!AnyProcess(iterated)) return;
+  options_checked_ = true;
+  const std::string prefix = OptionsPrefixFor("cbd", options_);
+  const bool unused = !UnusedPetscOptions(prefix, user_options_).empty();
+  if (!AnyProcess(unused)) return;
+  RefuseUnusedPetscOptions(prefix, user_options_);
+  throw std::invalid_argument("--petsc-options: another process found options PETSc did not use");
 }
 
 }  // namespace cb

@@ -89,7 +89,13 @@ class DistributedSteps {
              StepResult* result);
 
  private:
+  // The user's options, refused after the first solve that iterated when PETSc left any of
+  // them unread (petsc_unused_options.h), as the petsc-* formulations do.
+  void RefuseUnusedOptions(int code);  // SNESSolve's PetscErrorCode
+
   std::string options_;
+  std::string user_options_;
+  bool options_checked_ = false;
   std::unique_ptr<Objects> objects_;
 };
 

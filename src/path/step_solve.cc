@@ -90,6 +90,12 @@ JudgedStep SolveAndJudge(Formulation& formulation, const StepProblem& problem,
     return judged;
   }
   judged.result = RepeatedSolve(formulation, problem, start, options);
+  if (judged.result.status == Status::kFailed && options.controls.interrupted &&
+      options.controls.interrupted()) {
+    // A solve that failed because an interrupt abandoned its work (a factorisation:
+    // solvers/interruptible_klu.h) was stopped by the caller, not a failed step to cut back.
+    judged.result.status = Status::kStoppedByCaller;
+  }
   const StepPoint& point = judged.result.point;
   judged.verdict = Judge(problem, point, options.tolerance);
   const State& base = problem.base;

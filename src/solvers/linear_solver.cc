@@ -16,6 +16,8 @@
 #include <klu.h>
 
 #include <Eigen/UmfPackSupport>
+
+#include "solvers/interruptible_klu.h"
 #endif
 
 namespace cb {
@@ -289,8 +291,15 @@ class KluSolver final : public PatternTrackingSolver {
   bool NumericFactorize(const SpMat& a, std::string* why) override {
     if (numeric_ != nullptr && RefactorIsSound(a)) return true;
     FreeNumeric();
+    // An interrupted factorisation took the symbolic object with it (interruptible_klu.h).
+    if (symbolic_ == nullptr && !Analyze(a, why)) return false;
     CountFullFactorization();
-    numeric_ = klu_factor(ColumnPointers(a), RowIndices(a), Values(a), symbolic_, &common_);
+    bool interrupted = false;
+    numeric_ = FactorInterruptibly(a, &symbolic_, &common_, &interrupted);
+    if (interrupted) {
+      *why = "klu: factorisation of " + Size(a) + " abandoned on an interrupt";
+      return false;
+    }
     // With halt_if_singular (the default) KLU frees the object itself at a zero pivot and
     // reports KLU_SINGULAR; a returned object with a non-OK status is discarded too, so the next
     // call pivots afresh.

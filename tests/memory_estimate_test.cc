@@ -1,0 +1,122 @@
+// The memory estimate made before a problem is built (bench/harness/memory_budget.h,
+// docs/hardening.md "Memory") for the 3-D problems: their size known from the settings, the
+// direct factor's fill in 3-D, the linear solver chosen; refused at once with the estimate, the
+// machine's memory and the option that lifts the bound (issue 30).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "source_tree.h"
+
+namespace {
+
+struct Outcome {
+  int status = -1;
+  std::string output;
+  double seconds = 0.0;
+};
+
+// `contactbench run ARGUMENTS --out DIR` with CONTACTBENCH_MEMORY_LIMIT=`limit` ("" for the
+// machine's own), ended after 60 s: a run that starts building instead of refusing fails.
+Outcome RunWithLimit(const std::string& limit, const std::string& arguments) {
+  const auto dir = std::filesystem::temp_directory_path() / "contactbench_memory_estimate";
+  std::filesystem::remove_all(dir);
+  const std::string command = "timeout -s KILL 60 env " +
+                              (limit.empty() ? "" : "CONTACTBENCH_MEMORY_LIMIT=" + limit + " ") +
+                              CONTACTBENCH_BINARY + " run " + arguments + " --out " + dir.string() +
+                              " 2>&1";
+  const auto start = std::chrono::steady_clock::now();
+  Outcome out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out.output += buffer;
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(std::filesystem::exists(dir / "steps.csv")) << "work started: " << arguments;
+  std::filesystem::remove_all(dir);
+  return out;
+}
+
+// The estimate in GiB of a refusal ("... needs an estimated 4.52 GiB (..."), or -1.
+double EstimatedGib(const std::string& output) {
+  const std::string key = "needs an estimated ";
+  const auto at = output.find(key);
+  return at == std::string::npos ? -1.0 : std::stod(output.substr(at + key.size()));
+}
+
+// Refused in seconds, naming the estimate, the machine's memory and --allow-memory: before,
+// both were built first (72 s and 7.2 GB, 75 s and 8 GB) and died out of memory.
+TEST(MemoryEstimateTest, HugeThreeDimensionalProblemsAreRefusedAtOnce) {
+  for (const char* args : {"--problem hertz-3d --set n=1000",
+                           "--problem plate-3d --set nx=1000 --set ny=1000 --set nz=10"}) {
+    const Outcome o = RunWithLimit("", std::string(args) + " --formulation implicit-fb");
+    EXPECT_EQ(o.status, 2) << args << "\n" << o.output;
+    EXPECT_LT(o.seconds, 20.0) << args;
+    EXPECT_NE(o.output.find("needs an estimated"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("a 3-D direct factor's fill"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find(" available ("), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("--allow-memory runs it anyway"), std::string::npos) << o.output;
+  }
+}
+
+// Within the stated factor of the peak resident memory measured for a direct solve of
+// hertz-3d (docs/hardening.md, "Memory"; docs/scale-out.md): 1 to 2 times the peak.
+TEST(MemoryEstimateTest, TheThreeDimensionalEstimateIsWithinItsFactorOfTheMeasuredPeak) {
+  constexpr double kGib = 1024.0 * 1024.0 * 1024.0;
+  const struct {
+    int n;
+    double peak_bytes;
+  } measured[] = {{40, 4.3e9}, {54, 13.6e9}};
+  for (const auto& m : measured) {
+    const Outcome o =
+        RunWithLimit("1", "--problem hertz-3d --set n=" + std::to_string(m.n) +
+                              " --set nz=" + std::to_string(m.n) + " --formulation implicit-fb");
+    ASSERT_EQ(o.status, 2) << o.output;
+    const double ratio = EstimatedGib(o.output) * kGib / m.peak_bytes;
+    EXPECT_GE(ratio, 1.0) << "n = " << m.n << ": " << o.output;
+    EXPECT_LE(ratio, 2.0) << "n = " << m.n << ": " << o.output;
+  }
+}
+
+// A problem file of Gmsh hexahedra is checked once built, with the fill of a 3-D mesh (its
+// separator taken as a cube's); before, it was estimated as a 2-D mesh.
+TEST(MemoryEstimateTest, AHexahedralProblemFileCountsTheThreeDimensionalFill) {
+  const auto file = cb::testing_support::SourceRoot() / "tests/data/hex-block.json";
+  const Outcome o =
+      RunWithLimit("1", "--problem-file " + file.string() + " --formulation implicit-fb");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--problem-file " + file.string() + " needs an estimated"),
+            std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("a 3-D direct factor's fill"), std::string::npos) << o.output;
+}
+
+// "1e3" is no integer (integers as digits): refused as such, not read as 1000.
+TEST(MemoryEstimateTest, AnIntegerSizeIsDigits) {
+  const Outcome o = RunWithLimit("", "--problem hertz-3d --set n=1e3 --formulation implicit-fb");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("'1e3' is not an integer"), std::string::npos) << o.output;
+}
+
+#ifdef CONTACTBENCH_HAVE_PETSC
+// An iterative solve (dist-*'s linear=amg) has no factor: its estimate has no fill.
+TEST(MemoryEstimateTest, TheLinearSolverChosenCountsItsFill) {
+  const std::string problem = "--problem hertz-3d --set n=40 --set nz=40 ";
+  const Outcome direct = RunWithLimit("1", problem + "--formulation dist-implicit-fb");
+  const Outcome amg =
+      RunWithLimit("1", problem + "--formulation dist-implicit-fb --option linear=amg");
+  ASSERT_EQ(direct.status, 2) << direct.output;
+  ASSERT_EQ(amg.status, 2) << amg.output;
+  EXPECT_NE(direct.output.find("fill"), std::string::npos) << direct.output;
+  EXPECT_EQ(amg.output.find("fill"), std::string::npos) << amg.output;
+  EXPECT_LT(EstimatedGib(amg.output), 0.5 * EstimatedGib(direct.output)) << amg.output;
+}
+#endif
+
+}  // namespace
