@@ -22,12 +22,6 @@ std::string PetscVersion();
 std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig& config);
 
-// The formulations that take the backend option `petsc_options` (the CLI's --petsc-options):
-// petsc-* and the distributed dist-* (formulations/petsc_dist/petsc_dist.h).
-inline bool TakesPetscOptions(const std::string& formulation) {
-  return formulation.rfind("petsc-", 0) == 0 || formulation.rfind("dist-", 0) == 0;
-}
-
 // PETSc starts once per process, on the first PETSc formulation made (an MPI start costs about
 // half a second, which no command without PETSc should pay); a host that owns the process (the
 // harness's main) keeps this object for its lifetime, and PETSc (and MPI, when PETSc started
