@@ -11,6 +11,7 @@
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/siconos/siconos.h"
+#include "parallel/processes.h"
 
 namespace cb {
 

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "formulations/petsc/petsc.h"
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/cli.h"
 #include "harness/compare_table.h"
@@ -26,6 +25,7 @@
 #include "harness/snapshots.h"
 #include "harness/suggest.h"
 #include "io/problem_file.h"
+#include "parallel/processes.h"
 #include "path/near_start.h"
 #include "path/path.h"
 #include "path/replay.h"
@@ -216,8 +216,7 @@ int InMemory(const RunArguments& a, RunJson* record, RecordTexts* memory,
              const std::function<int(const RecordTarget&, std::string* reason)>& body) {
   if (!a.out.empty()) throw std::logic_error("records in memory and in --out both");
   if (a.save_every > 0) throw UsageError("--save-every: the saved states need an output directory");
-  if (DistributedSize() > 1)
-    throw UsageError("records in memory: not in a run of several processes");
+  if (Distributed()) throw UsageError("records in memory: not in a run of several processes");
   memory->clear();
   std::string reason;
   const int status = body(RecordTarget(memory), &reason);
@@ -401,14 +400,14 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
     throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
                      "' is traced by arc length");
   }
-  if (a.start_near && DistributedSize() > 1) {
+  if (a.start_near && Distributed()) {
     throw UsageError("--start near: not in a run of several processes");
   }
   const std::optional<State> guess = GuessStart(a, problem);
-  if (guess && DistributedSize() > 1) {
+  if (guess && Distributed()) {
     throw UsageError("--start guess:K: not in a run of several processes");
   }
-  if (DistributedRank() != 0) return FollowRun(a, problem, *formulation, options);
+  if (ProcessRank() != 0) return FollowRun(a, problem, *formulation, options);
   OutputReadyWord ready;  // to the other processes, even when this one fails before
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
@@ -545,7 +544,7 @@ int CompareCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) 
   } catch (const std::invalid_argument& e) {
     RefuseFormulationSettings(e);
   }
-  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
+  if (Distributed()) throw UsageError("compare: runs in one process only (not mpirun)");
   // The reference traces the path every formulation replays: one that cannot take the
   // problem's steps is a bad argument, refused before any work.
   std::string refusal;

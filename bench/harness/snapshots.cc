@@ -12,6 +12,7 @@
 #include "harness/records.h"
 #include "harness/vtk_files.h"
 #include "harness/vtk_pieces.h"
+#include "parallel/processes.h"
 
 namespace cb::harness {
 
@@ -19,8 +20,8 @@ SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& prob
     : directory_(directory),
       problem_(problem),
       every_(every),
-      process_(DistributedRank()),
-      processes_(DistributedSize()) {
+      process_(ProcessRank()),
+      processes_(ProcessCount()) {
   if (!problem_.body || process_ != 0) return;
   nodes_ = std::make_unique<RecordWriter<NodeRow>>(directory, SnapshotsSchema(),
                                                    problem_.body->body().dim());

@@ -1,6 +1,5 @@
 #include "formulations/petsc_dist/dist_steps.h"
 
-#include <mpi.h>
 #include <petscsnes.h>
 
 #include <algorithm>
@@ -21,19 +20,11 @@
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
+#include "parallel/processes.h"
 
 namespace cb {
 
 bool DistAvailable() { return true; }
-std::string MpiVersion() {
-  // Allowed before MPI_Init (MPI 3.1 section 8.7).
-  char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};
-  int length = 0;
-  if (MPI_Get_library_version(text, &length) != MPI_SUCCESS) return "";
-  std::string version(text, static_cast<std::size_t>(length));
-  const auto end = version.find_first_of(",\n");  // "Open MPI v4.1.4, package: ..."
-  return end == std::string::npos ? version : version.substr(0, end);
-}
 
 namespace {
 
@@ -42,13 +33,6 @@ bool PetscRunning() {
   PetscInitialized(&initialized);
   PetscFinalized(&finalized);
   return initialized && !finalized;
-}
-
-// Whether any process says so (a decision every process then takes).
-bool AnyProcess(bool mine) {
-  int local = mine ? 1 : 0, any = 0;
-  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-  return any != 0;
 }
 
 // Several processes need MPI's own functions and the parallel MUMPS (parallel_libraries.h);
@@ -84,20 +68,6 @@ std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body) {
   // Another body made at the address of a destroyed one is told apart by its element count.
   if (elements != body.Cells().size()) return {};
   return last.parts;
-}
-
-int DistributedRank() {
-  if (!PetscRunning()) return 0;
-  PetscMPIInt rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  return rank;
-}
-
-int DistributedSize() {
-  if (!PetscRunning()) return 1;
-  PetscMPIInt size = 1;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
 }
 
 bool CanDistribute(const StepProblem& step, std::string* why) {
@@ -184,9 +154,9 @@ struct DistributedSteps::Objects {
     Try(VecScatterCreateToAll(x, &to_all, &all), "VecScatterCreateToAll");
     const PetscInt* ranges = nullptr;
     Try(VecGetOwnershipRanges(x, &ranges), "VecGetOwnershipRanges");
-    std::vector<int> starts(static_cast<std::size_t>(DistributedSize()) + 1);
+    std::vector<int> starts(static_cast<std::size_t>(ProcessCount()) + 1);
     for (std::size_t k = 0; k < starts.size(); ++k) starts[k] = static_cast<int>(ranges[k]);
-    const auto rank = static_cast<std::size_t>(DistributedRank());
+    const auto rank = static_cast<std::size_t>(ProcessRank());
 
     const auto& whole = dynamic_cast<const BodyContactModel&>(*s.model);
     const ElasticBody& body = whole.body();
@@ -520,7 +490,7 @@ DistributedSteps::DistributedSteps(const std::string& defaults, const std::strin
     : options_(user_options.empty() ? defaults : defaults + " " + user_options),
       objects_(std::make_unique<Objects>()) {
   StartPetsc();
-  if (DistributedSize() > 1) RequireParallelLibraries();
+  if (Distributed()) RequireParallelLibraries();
   PetscErrorCapture capture;
   const std::string prefix = OptionsPrefixFor("cbd", options_);
   Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
@@ -630,7 +600,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
 
   RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES",
                     {o.stopped, o.timed_out, controls.time_limit_s}, result);
-  result->details["processes"] = std::to_string(DistributedSize());
+  result->details["processes"] = std::to_string(ProcessCount());
   if (code != 0) {
     const char* text = nullptr;
     PetscErrorMessage(code, &text, nullptr);

@@ -16,15 +16,9 @@
 
 namespace cb {
 
-// Whether this build has the distributed backend (PETSc with MPI).
+// Whether this build has the distributed backend (PETSc with MPI). The processes of the run
+// (rank, count, collectives) are src/parallel/processes.h's.
 bool DistAvailable();
-// The MPI library the distributed backend is linked with ("Open MPI v4.1.4"); "" without it.
-std::string MpiVersion();
-
-// This process's rank and the number of processes of a distributed run: 0 and 1 until a
-// distributed formulation has started PETSc (and MPI), and always without PETSc.
-int DistributedRank();
-int DistributedSize();
 
 // The elements of `body` (indices in the order of ElasticBody::Cells()) each process evaluates,
 // one list per process, as the distributed step system last partitioned `body` on this process
