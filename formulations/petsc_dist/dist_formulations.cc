@@ -109,11 +109,12 @@ class McpJacobianInPlace {
 class DistFormulation final : public Formulation {
  public:
   DistFormulation(std::string name, DistKind kind, const ImplicitFbOptions& options,
-                  const std::string& linear, const std::string& user_options)
+                  const std::string& linear, const std::string& user_options,
+                  ElementSplit* element_split)
       : name_(std::move(name)),
         kind_(kind),
         options_(options),
-        steps_(DefaultOptions(kind, options.solver_options, linear), user_options),
+        steps_(DefaultOptions(kind, options.solver_options, linear), user_options, element_split),
         cache_(StepEquationSystem::MakePatternCache()) {}
 
   std::string name() const override { return name_; }
@@ -215,7 +216,8 @@ std::unique_ptr<Formulation> MakeDist(const std::string& name, DistKind kind,
   reader.Finish();
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(name + " options: " + why);
-  return std::make_unique<DistFormulation>(name, kind, options, linear, user_options);
+  return std::make_unique<DistFormulation>(name, kind, options, linear, user_options,
+                                           config.element_split);
 }
 
 }  // namespace

@@ -48,27 +48,7 @@ void RequireParallelLibraries() {
       "-DCONTACTBENCH_WITH_SICONOS=OFF (docs/scale-out.md)");
 }
 
-// The partition Objects::Make last made, and of which body (ElementsOfEachProcess).
-struct LastPartition {
-  const ElasticBody* body = nullptr;
-  std::vector<std::vector<int>> parts;
-};
-LastPartition& Partitioned() {
-  static LastPartition last;
-  return last;
-}
-
 }  // namespace
-
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body) {
-  const LastPartition& last = Partitioned();
-  if (last.body != &body) return {};
-  std::size_t elements = 0;
-  for (const auto& part : last.parts) elements += part.size();
-  // Another body made at the address of a destroyed one is told apart by its element count.
-  if (elements != body.Cells().size()) return {};
-  return last.parts;
-}
 
 bool CanDistribute(const StepProblem& step, std::string* why) {
   if (dynamic_cast<const BodyContactModel*>(step.model) != nullptr) return true;
@@ -88,6 +68,7 @@ struct DistributedSteps::Objects {
   // What the objects were made for: the model, the system's size, and this process's share.
   const ContactModel* model = nullptr;
   int size = 0;
+  ElementSplit* element_split = nullptr;              // the run's, told each partition of the body
   bool split_pending = false;                         // SplitWhereAsked not yet run for `model`
   std::shared_ptr<const OwnPairsModel> contact_only;  // its pairs, without elements
   std::shared_ptr<const ElasticBody> own;             // its elements
@@ -162,7 +143,7 @@ struct DistributedSteps::Objects {
     const ElasticBody& body = whole.body();
     const auto parts = PartitionElements(body, starts);
     own = body.Restricted(parts[rank]);
-    Partitioned() = {&body, parts};
+    if (element_split != nullptr) element_split->Record(parts, body.Cells().size());
     contact_only = std::make_shared<OwnPairsModel>(
         whole, PartitionPairs(body, whole.pairs(), starts)[rank], first, last);
     element_pattern = ScatterPattern(body.num_dofs(), body.num_dofs(), own->StiffnessEntries());
@@ -486,9 +467,11 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
 
 // --- the instance ------------------------------------------------------------------------------
 
-DistributedSteps::DistributedSteps(const std::string& defaults, const std::string& user_options)
+DistributedSteps::DistributedSteps(const std::string& defaults, const std::string& user_options,
+                                   ElementSplit* element_split)
     : options_(user_options.empty() ? defaults : defaults + " " + user_options),
       objects_(std::make_unique<Objects>()) {
+  objects_->element_split = element_split;
   StartPetsc();
   if (Distributed()) RequireParallelLibraries();
   PetscErrorCapture capture;

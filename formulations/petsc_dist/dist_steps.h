@@ -45,6 +45,7 @@
 
 #include "core/sparse.h"
 #include "formulations/common/step_equations.h"
+#include "parallel/element_split.h"
 #include "step/formulation.h"
 
 namespace cb {
@@ -64,8 +65,10 @@ struct DistBounds {
 class DistributedSteps {
  public:
   // `defaults` and then `user_options` (PETSc's syntax); throws std::invalid_argument naming
-  // an option PETSc refuses. Starts PETSc (and MPI) on first use.
-  DistributedSteps(const std::string& defaults, const std::string& user_options);
+  // an option PETSc refuses. Starts PETSc (and MPI) on first use. Each partition of a body
+  // is recorded in `element_split` (none: not recorded).
+  DistributedSteps(const std::string& defaults, const std::string& user_options,
+                   ElementSplit* element_split = nullptr);
   ~DistributedSteps();
   DistributedSteps(const DistributedSteps&) = delete;
   DistributedSteps& operator=(const DistributedSteps&) = delete;

@@ -20,14 +20,9 @@ namespace cb {
 // (rank, count, collectives) are src/parallel/processes.h's.
 bool DistAvailable();
 
-// The elements of `body` (indices in the order of ElasticBody::Cells()) each process evaluates,
-// one list per process, as the distributed step system last partitioned `body` on this process
-// (element_partition.h; every process holds the same lists). Empty when no distributed solve
-// has partitioned `body` (one process without a dist-* solve yet, another body, no PETSc).
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body);
-
 // Registry factories; without PETSc they throw std::invalid_argument. Backend option
-// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h).
+// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h). Each
+// split of the body's elements over the processes goes to the config's element_split.
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig& config);

@@ -15,7 +15,6 @@ namespace {
 }  // namespace
 
 bool DistAvailable() { return false; }
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody&) { return {}; }
 std::string SequentialStandIn() { return ""; }
 std::string ParallelLibrariesPreload() { return ""; }
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig&) { Unavailable(); }
