@@ -32,6 +32,7 @@ if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/petsc_adapter.cc
     ${CMAKE_CURRENT_LIST_DIR}/petsc_unused_options.cc
+    ${CMAKE_CURRENT_LIST_DIR}/snes_glue.cc
     ${CMAKE_CURRENT_LIST_DIR}/petsc_vi_formulation.cc
     ${CMAKE_CURRENT_LIST_DIR}/petsc_rsls.cc
     ${CMAKE_CURRENT_LIST_DIR}/petsc_ssls.cc)

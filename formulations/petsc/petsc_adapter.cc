@@ -13,6 +13,7 @@
 #include "core/timer.h"
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc/petsc_unused_options.h"
+#include "formulations/petsc/snes_glue.h"
 
 namespace cb {
 
@@ -169,19 +170,18 @@ namespace {
 struct SnesViRun {
   SnesViRun(McpStepEquations& s, const McpBounds& b, const McpRowMap& r, const SolveControls& c,
             StepResult& out)
-      : system(s), bounds(b), rows(r), controls(c), result(out) {}
+      : system(s), bounds(b), rows(r), result(out) {
+    watch.Start(&c);
+  }
   McpStepEquations& system;
   const McpBounds& bounds;
   const McpRowMap& rows;
-  const SolveControls& controls;
   StepResult& result;
-  Stopwatch clock;
+  SnesControlsWatch watch;
   Vec x, f;
   SpMat jacobian;
   int jacobian_evals = 0;
   double initial_norm = 0.0;
-  bool stopped = false;
-  bool timed_out = false;
   std::exception_ptr error;
 };
 
@@ -213,14 +213,7 @@ void CopyBound(const Vec& bound, ::Vec to) {
 // Runs `body` for a callback; an exception is kept for Solve to rethrow and stops SNESSolve.
 template <typename Body>
 PetscErrorCode Guard(SnesViRun* run, Body&& body) {
-  if (run->error) return PETSC_ERR_USER;
-  try {
-    body();
-    return 0;
-  } catch (...) {
-    run->error = std::current_exception();
-    return PETSC_ERR_USER;
-  }
+  return Captured(&run->error, body) ? 0 : PETSC_ERR_USER;
 }
 
 // F of petsc_mcp.h; a non-finite value is a domain error (the line search then cuts back).
@@ -262,17 +255,9 @@ PetscErrorCode RecordIteration(SNES snes, PetscInt iteration, PetscReal fnorm, v
     Try(SNESGetFunction(snes, &f, nullptr, nullptr), "SNESGetFunction");
     CopyIn(x, &run->x);
     CopyIn(f, &run->f);
-    SNESLineSearch line_search = nullptr;
-    PetscReal step = 0.0;
-    if (iteration > 0 && SNESGetLineSearch(snes, &line_search) == 0) {
-      SNESLineSearchGetLambda(line_search, &step);
-    }
-    IterationRecord record;
-    record.iteration = static_cast<int>(iteration);
-    record.merit = 0.5 * fnorm * fnorm;
+    IterationRecord record = SnesIterationRecord(snes, iteration, fnorm);
     record.residual_inf = McpNaturalResidual(run->x, run->f, run->bounds);
     record.comp_res = ComplementarityResidual(run->system.layout(), run->x);
-    record.step_length = step;
     run->result.history.push_back(record);
   });
 }
@@ -288,24 +273,13 @@ PetscErrorCode SnesViConvergenceTest(SNES snes, PetscInt iteration, PetscReal, P
   if (code == 0) code = SNESGetNumberFunctionEvals(snes, &funcs);
   if (code != 0) return code;
   if (iteration == 0) run->initial_norm = fnorm;
-  *reason = SNES_CONVERGED_ITERATING;
-  if (std::isnan(fnorm)) {
-    *reason = SNES_DIVERGED_FNORM_NAN;
-  } else if (fnorm < atol) {
-    *reason = SNES_CONVERGED_FNORM_ABS;
-  } else if (max_funcs >= 0 && funcs >= max_funcs) {
-    *reason = SNES_DIVERGED_FUNCTION_COUNT;
-  } else if (iteration > 0 && fnorm < rtol * run->initial_norm) {
-    *reason = SNES_CONVERGED_FNORM_RELATIVE;
-  }
+  // SNESVI checks its iteration limit itself.
+  *reason = SnesTestReason({fnorm, fnorm < atol, false, max_funcs >= 0 && funcs >= max_funcs,
+                            iteration > 0 && fnorm < rtol * run->initial_norm});
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
   return Guard(run, [&] {
-    run->timed_out =
-        run->controls.time_limit_s > 0.0 && run->clock.Seconds() > run->controls.time_limit_s;
-    if (run->timed_out || (run->controls.interrupted && run->controls.interrupted())) {
-      run->stopped = true;
-      *reason = SNES_DIVERGED_FUNCTION_COUNT;  // any divergence stops SNESSolve; see `stopped`
-    }
+    // Any divergence stops SNESSolve; the watch says why.
+    if (run->watch.Stop([](bool mine) { return mine; })) *reason = SNES_DIVERGED_FUNCTION_COUNT;
   });
 }
 
@@ -426,8 +400,7 @@ void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const Solv
   }
   CopyIn(o.x, x);
 
-  RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI",
-                    {run.stopped, run.timed_out, controls.time_limit_s}, result);
+  RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI", run.watch.stop(), result);
   if (code != 0) {
     // A PETSc failure inside the solve (e.g. the factorisation): the step fails with it, and
     // the operands are remade on the next solve.

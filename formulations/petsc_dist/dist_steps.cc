@@ -13,6 +13,7 @@
 
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
+#include "formulations/petsc/snes_glue.h"
 #include "formulations/petsc_dist/dist_line_search.h"
 #include "formulations/petsc_dist/element_partition.h"
 #include "formulations/petsc_dist/field_split.h"
@@ -101,14 +102,12 @@ struct DistributedSteps::Objects {
   // One solve's context for the callbacks.
   const StepProblem* step = nullptr;
   const LocalStepEquations* equations = nullptr;
-  const SolveControls* controls = nullptr;
   StepResult* result = nullptr;
-  Stopwatch clock;
+  SnesControlsWatch watch;
   double residual_tol = 0.0;
   bool vi = false;
   // The serial Newton's line search, when it is SNES's (no -snes_linesearch_type given).
   std::unique_ptr<DistLineSearch> line_search;
-  bool stopped = false, timed_out = false;
   int jacobian_evals = 0;
   std::exception_ptr error;
   Vec full, displacement, local_f, element_force;
@@ -351,16 +350,7 @@ using Objects = DistributedSteps::Objects;
 // on any (the exception is kept where it was thrown, for Solve to rethrow).
 template <typename Body>
 bool Agreed(Objects* o, Body&& body) {
-  bool failed = static_cast<bool>(o->error);
-  if (!failed) {
-    try {
-      body();
-    } catch (...) {
-      o->error = std::current_exception();
-      failed = true;
-    }
-  }
-  return !AnyProcess(failed);
+  return !AnyProcess(!Captured(&o->error, body));
 }
 
 PetscErrorCode EvaluateResidual(SNES snes, ::Vec x, ::Vec f, void* context) {
@@ -399,23 +389,16 @@ PetscErrorCode EvaluateJacobian(SNES, ::Vec x, ::Mat, ::Mat, void* context) {
 PetscErrorCode RecordIteration(SNES snes, PetscInt iteration, PetscReal fnorm, void* context) {
   auto* o = static_cast<Objects*>(context);
   ::Vec x = nullptr, f = nullptr;
-  PetscReal inf = 0.0, step = 0.0;
+  PetscReal inf = 0.0;
   PetscErrorCode code = SNESGetSolution(snes, &x);
   if (code == 0) code = SNESGetFunction(snes, &f, nullptr, nullptr);
   if (code == 0) code = VecNorm(f, NORM_INFINITY, &inf);
-  SNESLineSearch line_search = nullptr;
-  if (code == 0 && iteration > 0 && SNESGetLineSearch(snes, &line_search) == 0) {
-    SNESLineSearchGetLambda(line_search, &step);
-  }
   if (code != 0) return code;
+  IterationRecord record = SnesIterationRecord(snes, iteration, fnorm);
+  record.residual_inf = inf;
   if (!Agreed(o, [&] {
         o->Gather(x);
-        IterationRecord record;
-        record.iteration = static_cast<int>(iteration);
-        record.merit = 0.5 * fnorm * fnorm;
-        record.residual_inf = inf;
         record.comp_res = ComplementarityResidual(o->equations->layout, o->full);
-        record.step_length = step;
         o->result->history.push_back(record);
       })) {
     return PETSC_ERR_USER;
@@ -435,23 +418,11 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
   if (code == 0 && !o->vi) code = SNESGetFunction(snes, &f, nullptr, nullptr);
   if (code == 0 && !o->vi) code = VecNorm(f, NORM_INFINITY, &inf);
   if (code != 0) return code;
-  *reason = SNES_CONVERGED_ITERATING;
-  if (std::isnan(fnorm)) {
-    *reason = SNES_DIVERGED_FNORM_NAN;
-  } else if (o->vi ? fnorm < atol : inf <= o->residual_tol) {
-    *reason = SNES_CONVERGED_FNORM_ABS;
-  } else if (iteration >= max_its) {
-    *reason = SNES_DIVERGED_MAX_IT;
-  } else if (max_funcs >= 0 && funcs >= max_funcs) {
-    *reason = SNES_DIVERGED_FUNCTION_COUNT;
-  }
+  *reason = SnesTestReason({fnorm, o->vi ? fnorm < atol : inf <= o->residual_tol,
+                            iteration >= max_its, max_funcs >= 0 && funcs >= max_funcs, false});
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
-  const SolveControls& c = *o->controls;
-  const bool late = c.time_limit_s > 0.0 && o->clock.Seconds() > c.time_limit_s;
-  const bool asked = c.interrupted && c.interrupted();
-  o->timed_out = AnyProcess(late);
-  o->stopped = o->timed_out || AnyProcess(asked);
-  if (o->stopped) *reason = SNES_DIVERGED_FUNCTION_COUNT;  // stops SNESSolve; see `stopped`
+  // Any divergence stops SNESSolve; the watch says why.
+  if (o->watch.Stop(AnyProcess)) *reason = SNES_DIVERGED_FUNCTION_COUNT;
   return 0;
 }
 
@@ -537,12 +508,10 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   }
   o.step = &step;
   o.equations = &equations;
-  o.controls = &controls;
   o.result = result;
-  o.clock = Stopwatch();
+  o.watch.Start(&controls);
   o.residual_tol = solver.residual_tol;
   if (o.line_search) o.line_search->Start(solver);
-  o.stopped = o.timed_out = false;
   o.jacobian_evals = 0;
   o.error = nullptr;
   o.Scatter(*x, o.x);
@@ -581,8 +550,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.Gather(o.x);
   *x = o.full;
 
-  RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES",
-                    {o.stopped, o.timed_out, controls.time_limit_s}, result);
+  RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES", o.watch.stop(), result);
   result->details["processes"] = std::to_string(ProcessCount());
   if (code != 0) {
     const char* text = nullptr;
