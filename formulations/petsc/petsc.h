@@ -1,7 +1,8 @@
-// The PETSc backend: `petsc-rsls` (SNESVINEWTONRSLS, reduced-space active set, petsc_rsls.cc)
-// and `petsc-ssls` (SNESVINEWTONSSLS, semismooth Fischer-Burmeister, petsc_ssls.cc), both on
-// the step as the mixed complementarity problem of petsc_mcp.h, through the adapter of
-// petsc_adapter.h. Without PETSc, petsc_stub.cc stands in (petsc.cmake chooses).
+// The PETSc backend: `petsc-rsls` (SNESVINEWTONRSLS, reduced-space active set) and `petsc-ssls`
+// (SNESVINEWTONSSLS, semismooth Fischer-Burmeister), both on the step as the mixed
+// complementarity problem of petsc_mcp.h (petsc_vi_formulation.cc), through the adapter of
+// petsc_adapter.h; PETSc's process is petsc_process.h's. Without PETSc, petsc_stub.cc stands in
+// (petsc.cmake chooses).
 #pragma once
 
 #include <memory>
