@@ -5,4 +5,5 @@ target_sources(contactbench_formulations PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/config.cc
   ${CMAKE_CURRENT_LIST_DIR}/energy_step.cc
   ${CMAKE_CURRENT_LIST_DIR}/start_solvers.cc
-  ${CMAKE_CURRENT_LIST_DIR}/step_equations.cc)
+  ${CMAKE_CURRENT_LIST_DIR}/step_equations.cc
+  ${CMAKE_CURRENT_LIST_DIR}/step_rows.cc)

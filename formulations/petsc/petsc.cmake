@@ -27,7 +27,8 @@ if(CONTACTBENCH_WITH_PETSC)
   endif()
 endif()
 
-target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp.cc)
+target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp.cc
+  ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp_rows.cc)
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/petsc_adapter.cc

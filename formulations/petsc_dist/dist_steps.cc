@@ -101,7 +101,7 @@ struct DistributedSteps::Objects {
 
   // One solve's context for the callbacks.
   const StepProblem* step = nullptr;
-  const LocalStepEquations* equations = nullptr;
+  const StepRows* equations = nullptr;
   StepResult* result = nullptr;
   SnesControlsWatch watch;
   double residual_tol = 0.0;
@@ -491,9 +491,9 @@ const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step, in
   return o.contact_only_step;
 }
 
-void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& equations,
-                             const DistBounds* bounds, const SolverOptions& solver,
-                             const SolveControls& controls, Vec* x, StepResult* result) {
+void DistributedSteps::Solve(const StepProblem& step, const StepRows& equations,
+                             const SolverOptions& solver, const SolveControls& controls, Vec* x,
+                             StepResult* result) {
   PetscErrorCapture capture;
   Objects& o = *objects_;
   const int n = equations.layout.size();
@@ -501,7 +501,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
     throw std::logic_error("DistributedSteps::Solve: ContactOnlyStep(step, " + std::to_string(n) +
                            ") was not called first");
   }
-  o.vi = bounds != nullptr;
+  o.vi = equations.bounded();
   if (o.split_pending) {
     if (!o.vi) o.SplitWhereAsked(dynamic_cast<const BodyContactModel&>(*step.model));
     o.split_pending = false;
@@ -530,7 +530,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   }
   Try(SNESSetFunction(o.snes, o.f, EvaluateResidual, &o), "SNESSetFunction");
   Try(SNESSetJacobian(o.snes, o.jacobian, o.jacobian, EvaluateJacobian, &o), "SNESSetJacobian");
-  if (bounds != nullptr) {
+  if (o.vi) {
     if (o.lower == nullptr) {
       Try(VecDuplicate(o.x, &o.lower), "VecDuplicate");
       Try(VecDuplicate(o.x, &o.upper), "VecDuplicate");
@@ -541,8 +541,8 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
       }
       return b;
     };
-    o.Scatter(marked(bounds->lower), o.lower);
-    o.Scatter(marked(bounds->upper), o.upper);
+    o.Scatter(marked(equations.lower), o.lower);
+    o.Scatter(marked(equations.upper), o.upper);
     Try(SNESVISetVariableBounds(o.snes, o.lower, o.upper), "SNESVISetVariableBounds");
   }
   const PetscErrorCode code = SNESSolve(o.snes, nullptr, o.x);

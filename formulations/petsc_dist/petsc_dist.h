@@ -1,7 +1,8 @@
 // The distributed backend: the step systems of the equation formulations and of PETSc's SNESVI
 // over MPI processes (docs/scale-out.md): `dist-implicit-fb`, `dist-nonsmooth-fb`,
 // `dist-active-set` (PETSc SNES newtonls on the rows of implicit-fb, nonsmooth-fb, active-set)
-// and `dist-petsc-rsls`, `dist-petsc-ssls` (SNESVI on the MCP of petsc-rsls / petsc-ssls).
+// and `dist-petsc-rsls`, `dist-petsc-ssls` (SNESVI on the MCP of petsc-rsls / petsc-ssls), each
+// its serial counterpart's rows (common/step_rows.h) in a file of its own (dist_formulation.h).
 // Launched with `mpirun -n N contactbench run --formulation dist-...`; without mpirun, one
 // process. Without PETSc, petsc_dist_stub.cc stands in (petsc_dist.cmake chooses).
 #pragma once
