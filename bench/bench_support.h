@@ -34,15 +34,15 @@ benchmark::internal::Benchmark* RegisterWithRange(Arguments&&... arguments) {
       });
 }
 
-// The CPU model from /proc/cpuinfo: Google Benchmark's own context has the number of CPUs and
-// their clock, not the model, which the comparison report states.
-// Whether the serial benchmarks time this formulation: built, and not one of the distributed
-// dist-* ones, which on one process are their serial counterparts' methods through PETSc's SNES
-// and have their own scale benchmark (docs/scale-out.md).
+// Whether the serial benchmarks time this formulation: built, and not a distributed one (its
+// registry entry), which on one process is its serial counterpart's method through PETSc's
+// SNES and has its own scale benchmark (docs/scale-out.md).
 inline bool InSerialBenchmarks(const FormulationInfo& info) {
-  return info.available && info.name.rfind("dist-", 0) != 0;
+  return info.available && !info.distributed;
 }
 
+// The CPU model from /proc/cpuinfo: Google Benchmark's own context has the number of CPUs and
+// their clock, not the model, which the comparison report states.
 inline std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;

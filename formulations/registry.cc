@@ -11,6 +11,7 @@
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/siconos/siconos.h"
+#include "parallel/processes.h"
 
 namespace cb {
 
@@ -18,7 +19,8 @@ namespace {
 
 // The registry itself: the built-in formulations, then those registered at run time.
 std::vector<FormulationInfo>& MutableRegistry() {
-  // One line per formulation: name, description, whether its backend was built, factory.
+  // One line per formulation: name, description, whether its backend was built, factory, and
+  // for the PETSc ones whether it is distributed and that it takes `petsc_options`.
   static std::vector<FormulationInfo> registry = {
       {"implicit-fb",
        "implicit smoothed Fischer-Burmeister equations (29)-(33), rho an unknown; eta cases 1-4",
@@ -44,19 +46,19 @@ std::vector<FormulationInfo>& MutableRegistry() {
       {"siconos-newton-min", "the same LCP, Siconos Newton on min(z, w) with FB line search",
        SiconosAvailable(), MakeSiconosNewtonMin},
       {"petsc-rsls", "the step as an MCP, PETSc SNESVINEWTONRSLS (reduced-space active set)",
-       PetscAvailable(), MakePetscRsls},
+       PetscAvailable(), MakePetscRsls, false, true},
       {"petsc-ssls", "the step as an MCP, PETSc SNESVINEWTONSSLS (semismooth FB)", PetscAvailable(),
-       MakePetscSsls},
+       MakePetscSsls, false, true},
       {"dist-implicit-fb", "implicit-fb's equations distributed over MPI, PETSc SNES newtonls",
-       DistAvailable(), MakeDistImplicitFb},
+       DistAvailable(), MakeDistImplicitFb, true, true},
       {"dist-nonsmooth-fb", "nonsmooth-fb's equations distributed over MPI, PETSc SNES newtonls",
-       DistAvailable(), MakeDistNonsmoothFb},
+       DistAvailable(), MakeDistNonsmoothFb, true, true},
       {"dist-active-set", "active-set's equations distributed over MPI, PETSc SNES newtonls",
-       DistAvailable(), MakeDistActiveSet},
+       DistAvailable(), MakeDistActiveSet, true, true},
       {"dist-petsc-rsls", "petsc-rsls's MCP distributed over MPI, SNESVINEWTONRSLS",
-       DistAvailable(), MakeDistPetscRsls},
+       DistAvailable(), MakeDistPetscRsls, true, true},
       {"dist-petsc-ssls", "petsc-ssls's MCP distributed over MPI, SNESVINEWTONSSLS",
-       DistAvailable(), MakeDistPetscSsls},
+       DistAvailable(), MakeDistPetscSsls, true, true},
   };
   return registry;
 }
@@ -101,6 +103,18 @@ std::vector<std::string> FormulationNames() {
   std::vector<std::string> names;
   for (const auto& info : FormulationRegistry()) names.push_back(info.name);
   return names;
+}
+
+const FormulationInfo* FindFormulation(const std::string& name) {
+  for (const auto& info : FormulationRegistry()) {
+    if (info.name == name) return &info;
+  }
+  return nullptr;
+}
+
+bool TakesPetscOptions(const std::string& name) {
+  const FormulationInfo* info = FindFormulation(name);
+  return info != nullptr && info->takes_petsc_options;
 }
 
 std::unique_ptr<Formulation> MakeFormulation(const std::string& name,

@@ -16,6 +16,11 @@ struct FormulationInfo {
   std::string description;
   bool available = true;  // its dependency was built
   std::function<std::unique_ptr<Formulation>(const FormulationConfig&)> make;
+  // Its step is solved over the processes of an MPI run (formulations/petsc_dist): the serial
+  // benchmarks and the one-process comparisons leave it out.
+  bool distributed = false;
+  // It takes the backend option `petsc_options` (the CLI's --petsc-options).
+  bool takes_petsc_options = false;
 };
 
 // In a fixed order: implicit-fb first, the built-in ones, then those registered at run time in
@@ -30,6 +35,10 @@ const std::vector<FormulationInfo>& FormulationRegistry();
 // registration).
 void RegisterFormulation(FormulationInfo info);
 std::vector<std::string> FormulationNames();
+// The registry's entry of `name`; nullptr for a name it does not know.
+const FormulationInfo* FindFormulation(const std::string& name);
+// Whether `name` is a known formulation that takes `petsc_options` (its registry entry says).
+bool TakesPetscOptions(const std::string& name);
 
 // A library the suite is linked with and its version ("" when this build has none of it).
 struct LinkedLibrary {

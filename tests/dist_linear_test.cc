@@ -1,5 +1,5 @@
 // The distributed formulations' iterative linear solve (`linear=amg`: FGMRES with the augmented
-// Schur-complement field split, GAMG on the du block; dist_formulations.cc, field_split.h) in one
+// Schur-complement field split, GAMG on the du block; dist_formulation.cc, field_split.h) in one
 // process, on P1 at n = 10 from the cold start: the answer must pass the verdict at 1e-8, carry the
 // load on the wall and the floor (the fixture's check) and equal the direct solve's (MUMPS); two
 // processes are checked by tests/mpi/two_processes.sh.

@@ -118,5 +118,27 @@ TEST(RegisterFormulationTest, RefusesATakenNameABadNameAndNoFactory) {
   for (const auto& name : FormulationNames()) EXPECT_NE(name, "no-factory");
 }
 
+// What a formulation can take is its registry entry's word, not its name's: the lookups agree
+// with the entries, an unknown name takes nothing, a distributed formulation is a PETSc one (the
+// distributed backend runs PETSc's SNES), and one registered at run time is neither unless its
+// entry says so.
+TEST(RegisterFormulationTest, CapabilitiesAreTheEntrys) {
+  for (const FormulationInfo& info : FormulationRegistry()) {
+    ASSERT_EQ(FindFormulation(info.name), &info) << info.name;
+    EXPECT_EQ(TakesPetscOptions(info.name), info.takes_petsc_options) << info.name;
+    if (info.distributed) {
+      EXPECT_TRUE(info.takes_petsc_options) << info.name;
+    }
+  }
+  EXPECT_EQ(FindFormulation("no-such-formulation"), nullptr);
+  EXPECT_FALSE(TakesPetscOptions("no-such-formulation"));
+  const auto method = [](ExternalStepSystem&, const ExternalCall& call) {
+    return ExternalAnswer{call.x0, Status::kConverged, "", {}, {}};
+  };
+  const FormulationInfo external = ExternalFormulationInfo("dist-petsc-lookalike", "", "", method);
+  EXPECT_FALSE(external.distributed);
+  EXPECT_FALSE(external.takes_petsc_options);
+}
+
 }  // namespace
 }  // namespace cb

@@ -13,8 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "formulations/petsc/petsc.h"
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/cli.h"
 #include "harness/compare_table.h"
@@ -28,6 +26,7 @@
 #include "harness/snapshots.h"
 #include "harness/suggest.h"
 #include "io/problem_file.h"
+#include "parallel/processes.h"
 #include "path/near_start.h"
 #include "path/path.h"
 #include "path/replay.h"
@@ -276,8 +275,7 @@ int InMemory(const RunArguments& a, RunJson* record, RecordTexts* memory,
              const std::function<int(const RecordTarget&, std::string* reason)>& body) {
   if (!a.out.empty()) throw std::logic_error("records in memory and in --out both");
   if (a.save_every > 0) throw UsageError("--save-every: the saved states need an output directory");
-  if (DistributedSize() > 1)
-    throw UsageError("records in memory: not in a run of several processes");
+  if (Distributed()) throw UsageError("records in memory: not in a run of several processes");
   memory->clear();
   std::string reason;
   const int status = body(RecordTarget(memory), &reason);
@@ -347,9 +345,19 @@ std::string StartLabel(const RunArguments& a) {
 
 // The run itself, its records in `target` (a claimed output directory or memory). `guess`:
 // --start guess:K's state, the start of the fixed-load solve.
-int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
-             const PathOptions& options, const RecordTarget& target, OutputReadyWord* ready,
-             RunJson* record, std::string* reason, std::optional<State> near) {
+struct TracedRun {  // what TraceRun traces: the problem, the formulation and their settings
+  const Problem& problem;
+  Formulation& formulation;
+  const PathOptions& options;
+  const ElementSplit& split;  // the formulation's split of the body over the processes
+};
+
+int TraceRun(const RunArguments& a, const TracedRun& run, const RecordTarget& target,
+             OutputReadyWord* ready, RunJson* record, std::string* reason,
+             std::optional<State> near) {
+  const Problem& problem = run.problem;
+  Formulation& formulation = run.formulation;
+  const PathOptions& options = run.options;
   // --start near: the reference formulation's solution, perturbed (near_start.h).
   if (a.start_near) {
     auto reference = MakeFormulation("implicit-fb", FormulationConfig());
@@ -373,7 +381,7 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
   WriteParameters(target, problem);
   // The saved states are files (VTK among them): only in an output directory.
   std::optional<SnapshotWriter> snapshots;
-  if (target.memory == nullptr) snapshots.emplace(a.out, problem, a.save_every);
+  if (target.memory == nullptr) snapshots.emplace(a.out, problem, a.save_every, &run.split);
   ready->Ready(a.out + "/vtk");     // the other processes of a distributed run may write there now
   AgreedRecords agreed(&recorder);  // with the other processes of a distributed run
   std::vector<PathObserver*> watching{&agreed};
@@ -415,13 +423,13 @@ int TraceRun(const RunArguments& a, const Problem& problem, Formulation& formula
 // A distributed run's processes other than 0 (petsc_dist.h): the same path, every decision
 // taken on values all processes share, and only their pieces of the saved states written, in
 // the directory process 0 has made ready (a failure there ends them quietly: process 0 says why).
-int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formulation,
-              const PathOptions& options) {
+int FollowRun(const RunArguments& a, const TracedRun& run) {
   if (const int refused = AwaitOutputReady(a.out + "/vtk"); refused != 0) return refused;
-  SnapshotWriter pieces(a.out, problem, a.save_every);
+  const Problem& problem = run.problem;
+  SnapshotWriter pieces(a.out, problem, a.save_every, &run.split);
   AgreedRecords agreed(nullptr);  // process 0's record writes, agreed (process_agreement.h)
   ObserverTee observers({&agreed, &pieces});
-  const PathSummary summary = TraceProblem(problem, formulation, options, &observers);
+  const PathSummary summary = TraceProblem(problem, run.formulation, run.options, &observers);
   if (summary.status == Status::kStoppedByCaller) AcknowledgeInterrupt();  // as process 0 does
   pieces.Save(summary.final_state, summary.accepted_steps, "final");
   OnEveryProcess("writing the final state", [] {});  // process 0 writes it
@@ -429,13 +437,17 @@ int FollowRun(const RunArguments& a, const Problem& problem, Formulation& formul
   return summary.status == Status::kConverged ? kExitOk : kExitFailure;
 }
 
-// The formulation of `run`, made with its settings (refused as bad arguments).
-std::unique_ptr<Formulation> MakeRunFormulation(const RunArguments& a) {
+// The formulation of `run`, made with its settings (refused as bad arguments); a distributed
+// one records its split of the body in `split`, which outlives it.
+std::unique_ptr<Formulation> MakeRunFormulation(const RunArguments& a,
+                                                ElementSplit* split = nullptr) {
   if (!a.petsc_options.empty() && !TakesPetscOptions(a.formulation)) {
     throw UsageError("--petsc-options: " + a.formulation + " is not a PETSc formulation");
   }
+  FormulationConfig config = ConfigFor(a, a.formulation);
+  config.element_split = split;
   try {
-    return MakeFormulation(a.formulation, ConfigFor(a, a.formulation));
+    return MakeFormulation(a.formulation, config);
   } catch (const std::invalid_argument& e) {
     RefuseFormulationSettings(e);
   }
@@ -459,8 +471,10 @@ bool AcceptsProblem(const RunArguments& a, std::string* reason) {
 
 int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
   Problem problem = LoadProblem(a);
-  std::unique_ptr<Formulation> formulation = MakeRunFormulation(a);
+  ElementSplit split;  // the run's: the formulation records, the writers read
+  std::unique_ptr<Formulation> formulation = MakeRunFormulation(a, &split);
   const PathOptions options = MakePathOptions(a, problem);
+  const TracedRun run{problem, *formulation, options, split};
   std::string refusal;
   if (!formulation->Accepts(FirstStep(problem, options), &refusal)) {
     throw InputError(refusal + " (problem '" + problem.name + "')");
@@ -469,21 +483,21 @@ int RunCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
     throw UsageError("--start near: only for fixed-load problems; '" + problem.name +
                      "' is traced by arc length");
   }
-  if (a.start_near && DistributedSize() > 1) {
+  if (a.start_near && Distributed()) {
     throw UsageError("--start near: not in a run of several processes");
   }
   const std::optional<State> guess = GuessStart(a, problem);
-  if (guess && DistributedSize() > 1) {
+  if (guess && Distributed()) {
     throw UsageError("--start guess:K: not in a run of several processes");
   }
-  if (DistributedRank() != 0) return FollowRun(a, problem, *formulation, options);
+  if (ProcessRank() != 0) return FollowRun(a, run);
   OutputReadyWord ready;  // to the other processes, even when this one fails before
   DescribeArguments(a, problem, record);
   record->formulations = {formulation->name()};
   record->starts = {StartLabel(a)};
   try {
     return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
-      return TraceRun(a, problem, *formulation, options, target, &ready, record, reason, guess);
+      return TraceRun(a, run, target, &ready, record, reason, guess);
     });
   } catch (const UsageError&) {
     ready.Refused(kExitBadArguments);  // a refused --out: status 2 on every process
@@ -649,7 +663,7 @@ int CompareCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) 
   } catch (const std::invalid_argument& e) {
     RefuseFormulationSettings(e);
   }
-  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
+  if (Distributed()) throw UsageError("compare: runs in one process only (not mpirun)");
   // The reference traces the path every formulation replays: one that cannot take the
   // problem's steps is a bad argument, refused before any work.
   std::string refusal;

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <set>
 
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/cli.h"
 #include "harness/compare_table.h"
@@ -14,6 +13,7 @@
 #include "harness/memory_budget.h"
 #include "harness/records.h"
 #include "io/fclib_file.h"
+#include "parallel/processes.h"
 #include "path/path.h"
 #include "problems/problem_path.h"
 #include "verdict/natural_map_error.h"
@@ -227,7 +227,7 @@ std::vector<std::string> ProblemSetFiles(const std::string& items) {
 
 int ProblemSetCommand(const RunArguments& a, RunJson* record, RecordTexts* memory) {
   const std::vector<std::string> files = ProblemSetFiles(a.problem_dir);
-  if (DistributedSize() > 1) throw UsageError("compare: runs in one process only (not mpirun)");
+  if (Distributed()) throw UsageError("compare: runs in one process only (not mpirun)");
   const auto formulations = MakeFormulations(a);
   CheckFiles(a, files, record);
   record->problem = fs::path(files.front()).parent_path().filename().string();

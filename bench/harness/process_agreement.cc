@@ -7,36 +7,20 @@
 #include <stdexcept>
 
 #include "core/csv.h"
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "harness/interrupt.h"
 #include "harness/output_directory.h"
-
-#ifdef CONTACTBENCH_HAVE_PETSC
-#include <mpi.h>
-#endif
+#include "parallel/processes.h"
 
 namespace cb::harness {
 
 namespace {
 
-bool Distributed() { return DistributedSize() > 1; }
-
 // The lowest process where `failed`, or INT_MAX where none (a collective).
-int LowestFailing(bool failed) {
-  int lowest = failed ? DistributedRank() : INT_MAX;
-#ifdef CONTACTBENCH_HAVE_PETSC
-  int mine = lowest;
-  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-#endif
-  return lowest;
-}
+int LowestFailing(bool failed) { return MinOverProcesses(failed ? ProcessRank() : INT_MAX); }
 
 }  // namespace
 
-bool InterruptedOnAnyProcess() {
-  if (!Distributed()) return InterruptRequested();
-  return LowestFailing(InterruptRequested()) != INT_MAX;
-}
+bool InterruptedOnAnyProcess() { return AnyProcess(InterruptRequested()); }
 
 namespace {
 
@@ -45,22 +29,17 @@ constexpr int kFailedWord = 3;
 
 // Process 0's word: 0 ready, else the exit status it ends with (a collective; the others'
 // `word` is ignored).
-int ProcessZeroSays(int word) {
-#ifdef CONTACTBENCH_HAVE_PETSC
-  MPI_Bcast(&word, 1, MPI_INT, 0, MPI_COMM_WORLD);
-#endif
-  return word;
-}
+int ProcessZeroSays(int word) { return BroadcastFromZero(word); }
 
 // A file made and removed in `directory`: the directory process 0 prepared must be the one this
 // process sees (a file system every process shares) and writable from here.
 void ProbeDirectory(const std::string& directory) {
   const std::string probe =
-      directory + "/.contactbench_write_test_" + std::to_string(DistributedRank());
+      directory + "/.contactbench_write_test_" + std::to_string(ProcessRank());
   try {
     ProbeWritable(probe);
   } catch (const WriteError& e) {
-    throw WriteError(probe, "process " + std::to_string(DistributedRank()) +
+    throw WriteError(probe, "process " + std::to_string(ProcessRank()) +
                                 " cannot write there (is --out on a file system every "
                                 "process shares?): " +
                                 e.what());

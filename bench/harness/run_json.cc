@@ -12,9 +12,9 @@
 #include "core/blas_info.h"
 #include "core/csv.h"
 #include "core/owned_file.h"
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "formulations/registry.h"
 #include "harness/sha256.h"
+#include "parallel/processes.h"
 
 namespace cb::harness {
 
@@ -90,7 +90,7 @@ std::string RunJsonText(const RunJson& run, int exit_status, const std::string& 
                   {"logical_cpus", machine.logical_cpus},
                   {"available_cpus", machine.available_cpus}};
   j["load_average"] = {{"start", Load(run.load_at_start)}, {"end", Load(LoadAverage())}};
-  j["processes"] = DistributedSize();
+  j["processes"] = ProcessCount();
   j["command_line"] = run.command_line;
   j["command"] = run.command;
   j["problem"] = OrNull(run.problem);

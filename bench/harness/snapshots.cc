@@ -5,22 +5,24 @@
 #include <filesystem>
 #include <map>
 
-#include "formulations/petsc_dist/petsc_dist.h"
 #include "harness/interrupt.h"
 #include "harness/obstacle_patches.h"
 #include "harness/process_agreement.h"
 #include "harness/records.h"
 #include "harness/vtk_files.h"
 #include "harness/vtk_pieces.h"
+#include "parallel/processes.h"
 
 namespace cb::harness {
 
-SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every)
+SnapshotWriter::SnapshotWriter(const std::string& directory, const Problem& problem, int every,
+                               const ElementSplit* split)
     : directory_(directory),
       problem_(problem),
       every_(every),
-      process_(DistributedRank()),
-      processes_(DistributedSize()) {
+      split_(split),
+      process_(ProcessRank()),
+      processes_(ProcessCount()) {
   if (!problem_.body || process_ != 0) return;
   nodes_ = std::make_unique<RecordWriter<NodeRow>>(directory, SnapshotsSchema(),
                                                    problem_.body->body().dim());
@@ -145,7 +147,10 @@ std::string SnapshotWriter::WriteBody(const std::string& stem, const State& stat
 std::string SnapshotWriter::WritePieces(const std::string& stem, const State& state, int step) {
   StopIfInterrupted("saving a state");
   const ElasticBody& body = problem_.body->body();
-  const BodyPiece piece = PieceOfProcess(body, ElementsOfEachProcess(body), process_, processes_);
+  const std::vector<std::vector<int>> parts =
+      split_ != nullptr ? split_->ElementsOfEachProcess(body.Cells().size())
+                        : std::vector<std::vector<int>>();
+  const BodyPiece piece = PieceOfProcess(body, parts, process_, processes_);
   WriteBodyPieceVtu(directory_ + "/vtk/" + PieceFile(stem, process_), problem_, state, step, piece);
   return stem + ".pvtu";
 }

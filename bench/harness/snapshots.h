@@ -13,12 +13,12 @@
 // holds its step and lambda as field data; the obstacles are block 1 at every time. DIR/cells.csv
 // lists the elements (cell, corner, node). The CSV columns are those of record_schemas.h.
 //
-// In a distributed run of several processes (petsc_dist.h) every process keeps a writer and
-// saves the same states: each writes its piece of the body, DIR/vtk/<problem>_NNNN_pP.vtu
-// (vtk_pieces.h), and process 0 alone everything else, with DIR/vtk/<problem>_NNNN.pvtu, the
-// parallel index of the pieces, in place of the .vtu (the collection lists the .pvtu). Process 0
-// makes DIR/vtk before the others write (process_agreement.h); a save that fails on any process
-// fails on all of them.
+// In a distributed run of several processes (formulations/petsc_dist/petsc_dist.h) every process
+// keeps a writer and saves the same states: each writes its piece of the body,
+// DIR/vtk/<problem>_NNNN_pP.vtu (vtk_pieces.h), and process 0 alone everything else, with
+// DIR/vtk/<problem>_NNNN.pvtu, the parallel index of the pieces, in place of the .vtu (the
+// collection lists the .pvtu). Process 0 makes DIR/vtk before the others write
+// (process_agreement.h); a save that fails on any process fails on all of them.
 #pragma once
 
 #include <memory>
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "harness/record_schemas.h"
+#include "parallel/element_split.h"
 #include "path/path.h"
 #include "problems/problem.h"
 
@@ -36,7 +37,10 @@ class SnapshotWriter final : public PathObserver {
   // `every`: save every this many accepted steps (0: only critical points and the final state).
   // Writes nothing for a problem that is not a body against obstacles (an LCP). Process 0 makes
   // DIR/vtk and writes the files of one process; the others only their pieces.
-  SnapshotWriter(const std::string& directory, const Problem& problem, int every);
+  // `split`: the run's split of the body's elements over the processes, which the formulation
+  // records (none, or nothing recorded: process 0 holds the whole body).
+  SnapshotWriter(const std::string& directory, const Problem& problem, int every,
+                 const ElementSplit* split = nullptr);
 
   void OnAttempt(const StepAttempt& attempt) override;
   void OnCriticalPoint(const CriticalPointRecord& c) override;
@@ -72,6 +76,7 @@ class SnapshotWriter final : public PathObserver {
   std::string directory_;
   const Problem& problem_;
   int every_ = 0;
+  const ElementSplit* split_ = nullptr;
   int process_ = 0, processes_ = 1;
   std::unique_ptr<RecordWriter<NodeRow>> nodes_;
   std::unique_ptr<RecordWriter<PairRow>> contacts_;

@@ -8,4 +8,5 @@ target_sources(contactbench_formulations PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/start_solvers.cc
   ${CMAKE_CURRENT_LIST_DIR}/step_equation_solve.cc
   ${CMAKE_CURRENT_LIST_DIR}/step_equations.cc
+  ${CMAKE_CURRENT_LIST_DIR}/step_rows.cc
   ${CMAKE_CURRENT_LIST_DIR}/step_start.cc)

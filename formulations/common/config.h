@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "parallel/element_split.h"
 #include "solvers/equation_solver.h"
 
 namespace cb {
@@ -19,6 +20,10 @@ struct FormulationConfig {
   int eta = 1;                    // eta case 1..4 (implicit-fb)
   SolverOptions solver_options;   // equation solvers' options (tolerances, linear solver)
   std::map<std::string, std::string> options;  // backend-specific KEY=VALUE
+  // Where a distributed formulation records how it split the body's elements over the
+  // processes (parallel/element_split.h); owned by the run, which outlives the formulation; none
+  // outside a run.
+  ElementSplit* element_split = nullptr;
 };
 
 // A key no reader of a formulation's options knows: the message lists the known keys, which

@@ -23,6 +23,7 @@
 
 #include "formulations/common/config.h"
 #include "formulations/common/start_solvers.h"
+#include "formulations/common/step_rows.h"
 #include "formulations/implicit_fb/eta_equation.h"
 #include "formulations/implicit_fb/implicit_fb_system.h"
 #include "solvers/equation_solver.h"
@@ -74,6 +75,13 @@ class ImplicitFb final : public Formulation {
   StartSolvers solvers_;
   std::shared_ptr<ImplicitFbSystem::PatternCache> cache_;
 };
+
+// implicit-fb's step as rows (common/step_rows.h; implicit_fb_rows.cc): the system (29)-(33) on
+// `local` with the eta equation (32) of the start's gamma, the start (38)-(43) on `step`, and the
+// details gamma and rho, as ImplicitFb::DoSolve builds them.
+StepRows ImplicitFbRows(const StepProblem& step, const StepProblem& local, const StartPoint& start,
+                        const ImplicitFbOptions& options,
+                        std::shared_ptr<StepEquationSystem::PatternCache> cache);
 
 // Registry factory: config.solver, config.solver_options and config.eta; backend options
 // `gamma_tol` and `rho_min` (an unknown key or a bad value throws std::invalid_argument).

@@ -4,4 +4,5 @@ target_sources(contactbench_formulations PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/nonsmooth_fb.cc
   ${CMAKE_CURRENT_LIST_DIR}/nonsmooth_formulation.cc
   ${CMAKE_CURRENT_LIST_DIR}/nonsmooth_restart.cc
+  ${CMAKE_CURRENT_LIST_DIR}/nonsmooth_rows.cc
   ${CMAKE_CURRENT_LIST_DIR}/nonsmooth_system.cc)

@@ -56,6 +56,7 @@
 #include "formulations/common/config.h"
 #include "formulations/common/start_solvers.h"
 #include "formulations/common/step_equations.h"
+#include "formulations/common/step_rows.h"
 #include "step/formulation.h"
 
 namespace cb {
@@ -122,6 +123,12 @@ class NonsmoothFormulation final : public Formulation {
   StartSolvers solvers_;
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };
+
+// nonsmooth-fb's (`function` FB) or active-set's (min) step as rows (common/step_rows.h;
+// nonsmooth_rows.cc): NonsmoothSystem on `local` from MakeStepEquationStart on `step`.
+StepRows NonsmoothRows(const StepProblem& step, const StepProblem& local, const StartPoint& start,
+                       ComplementarityFunction function,
+                       std::shared_ptr<StepEquationSystem::PatternCache> cache);
 
 // "nonsmooth-fb" (Fischer-Burmeister) or "active-set" (min).
 std::string NonsmoothName(ComplementarityFunction function);

@@ -135,7 +135,7 @@ void NonsmoothFormulation::DoSolve(const StepProblem& step, const StartPoint& st
   SolverSummary summary = RunStepEquationSolver(solvers_.For(start), system, &x, controls, result,
                                                 [&track](const Vec& y) { track.Observe(y); });
   const bool restart = TakesRestart(options_, summary, step, start);
-  result->details["restarted"] = restart ? "1" : "0";
+  result->details["restarted"] = std::to_string(restart ? 1 : 0);
   if (restart) {
     summary = RunRestart(step, start, controls, solvers_.For(start), system, &track, &x, result);
   }

@@ -27,14 +27,15 @@ if(CONTACTBENCH_WITH_PETSC)
   endif()
 endif()
 
-target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp.cc)
+target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp.cc
+  ${CMAKE_CURRENT_LIST_DIR}/petsc_mcp_rows.cc)
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/petsc_adapter.cc
+    ${CMAKE_CURRENT_LIST_DIR}/petsc_process.cc
     ${CMAKE_CURRENT_LIST_DIR}/petsc_unused_options.cc
-    ${CMAKE_CURRENT_LIST_DIR}/petsc_vi_formulation.cc
-    ${CMAKE_CURRENT_LIST_DIR}/petsc_rsls.cc
-    ${CMAKE_CURRENT_LIST_DIR}/petsc_ssls.cc)
+    ${CMAKE_CURRENT_LIST_DIR}/snes_glue.cc
+    ${CMAKE_CURRENT_LIST_DIR}/petsc_vi_formulation.cc)
   target_link_libraries(contactbench_formulations PRIVATE PkgConfig::PETSC MPI::MPI_CXX)
   # For code that asks at compile time (the tests); the formulations ask PetscAvailable().
   target_compile_definitions(contactbench_formulations PUBLIC CONTACTBENCH_HAVE_PETSC=1)

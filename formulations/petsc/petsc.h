@@ -1,7 +1,8 @@
-// The PETSc backend: `petsc-rsls` (SNESVINEWTONRSLS, reduced-space active set, petsc_rsls.cc)
-// and `petsc-ssls` (SNESVINEWTONSSLS, semismooth Fischer-Burmeister, petsc_ssls.cc), both on
-// the step as the mixed complementarity problem of petsc_mcp.h, through the adapter of
-// petsc_adapter.h. Without PETSc, petsc_stub.cc stands in (petsc.cmake chooses).
+// The PETSc backend: `petsc-rsls` (SNESVINEWTONRSLS, reduced-space active set) and `petsc-ssls`
+// (SNESVINEWTONSSLS, semismooth Fischer-Burmeister), both on the step as the mixed
+// complementarity problem of petsc_mcp.h (petsc_vi_formulation.cc), through the adapter of
+// petsc_adapter.h; PETSc's process is petsc_process.h's. Without PETSc, petsc_stub.cc stands in
+// (petsc.cmake chooses).
 #pragma once
 
 #include <memory>
@@ -21,12 +22,6 @@ std::string PetscVersion();
 // superlu"), applied over the formulation's defaults (petsc_adapter.h).
 std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig& config);
-
-// The formulations that take the backend option `petsc_options` (the CLI's --petsc-options):
-// petsc-* and the distributed dist-* (formulations/petsc_dist/petsc_dist.h).
-inline bool TakesPetscOptions(const std::string& formulation) {
-  return formulation.rfind("petsc-", 0) == 0 || formulation.rfind("dist-", 0) == 0;
-}
 
 // PETSc starts once per process, on the first PETSc formulation made (an MPI start costs about
 // half a second, which no command without PETSc should pay); a host that owns the process (the

@@ -1,100 +1,17 @@
 #include "formulations/petsc/petsc_adapter.h"
 
-#include <petscversion.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <exception>
 #include <map>
 #include <mutex>
 #include <stdexcept>
 
 #include "core/timer.h"
-#include "formulations/petsc/petsc.h"
 #include "formulations/petsc/petsc_unused_options.h"
-#include "step/time_limit.h"
+#include "formulations/petsc/snes_glue.h"
 
 namespace cb {
-
-bool PetscAvailable() { return true; }
-std::string PetscVersion() {
-  return std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR) + "." +
-         std::to_string(PETSC_VERSION_SUBMINOR);
-}
-
-// --- the process ------------------------------------------------------------------------------
-
-namespace {
-
-bool started_here = false;  // PetscInitialize was ours, so PetscFinalize is too
-
-void FinalizePetsc() {
-  PetscBool initialized = PETSC_FALSE, finalized = PETSC_FALSE;
-  PetscInitialized(&initialized);
-  PetscFinalized(&finalized);
-  if (started_here && initialized && !finalized) PetscFinalize();
-}
-
-// The message of the error being raised (its first report), instead of PETSc's printout.
-std::string last_error;
-
-PetscErrorCode RecordPetscError(MPI_Comm, int, const char* function, const char*,
-                                PetscErrorCode code, PetscErrorType type, const char* message,
-                                void*) {
-  if (type == PETSC_ERROR_INITIAL || last_error.empty()) {
-    const char* text = nullptr;
-    if (message == nullptr || *message == '\0') PetscErrorMessage(code, &text, nullptr);
-    last_error = std::string(function != nullptr ? function : "PETSc") + "(): " +
-                 (text != nullptr      ? text
-                  : message != nullptr ? message
-                                       : "");
-  }
-  return code;
-}
-
-}  // namespace
-
-bool PetscGone() {
-  PetscBool finalized = PETSC_FALSE;
-  PetscFinalized(&finalized);
-  return finalized;
-}
-
-PetscErrorCapture::PetscErrorCapture() {
-  last_error.clear();
-  PetscPushErrorHandler(RecordPetscError, nullptr);
-}
-
-PetscErrorCapture::~PetscErrorCapture() { PetscPopErrorHandler(); }
-
-std::string PetscErrorText(PetscErrorCode code, const char* call) {
-  std::string text = std::string("PETSc ") + call + " failed (error " + std::to_string(code) + ")";
-  return last_error.empty() ? text : text + ": " + last_error;
-}
-
-void Try(PetscErrorCode code, const char* call) {
-  if (code != 0) throw std::runtime_error(PetscErrorText(code, call));
-}
-
-void StartPetsc() {
-  PetscBool initialized = PETSC_FALSE;
-  PetscInitialized(&initialized);
-  if (initialized) return;
-  static char name[] = "contactbench", no_signals[] = "-no_signal_handler",
-              no_rc[] = "-skip_petscrc";
-  static char* arguments[] = {name, no_signals, no_rc, nullptr};
-  int argc = 3;
-  char** argv = arguments;
-  const PetscErrorCode code = PetscInitialize(&argc, &argv, nullptr, nullptr);
-  if (code != 0) {
-    throw std::runtime_error("PETSc: PetscInitialize failed (error " + std::to_string(code) + ")");
-  }
-  started_here = true;
-  std::atexit(FinalizePetsc);  // a host without a PetscProcessScope
-}
-
-PetscProcessScope::~PetscProcessScope() { FinalizePetsc(); }
 
 // --- reasons -----------------------------------------------------------------------------------
 
@@ -170,19 +87,18 @@ namespace {
 struct SnesViRun {
   SnesViRun(McpStepEquations& s, const McpBounds& b, const McpRowMap& r, const SolveControls& c,
             StepResult& out)
-      : system(s), bounds(b), rows(r), controls(c), result(out) {}
+      : system(s), bounds(b), rows(r), result(out) {
+    watch.Start(&c);
+  }
   McpStepEquations& system;
   const McpBounds& bounds;
   const McpRowMap& rows;
-  const SolveControls& controls;
   StepResult& result;
-  Stopwatch clock;
+  SnesControlsWatch watch;
   Vec x, f;
   SpMat jacobian;
   int jacobian_evals = 0;
   double initial_norm = 0.0;
-  bool stopped = false;
-  bool timed_out = false;
   std::exception_ptr error;
 };
 
@@ -214,14 +130,7 @@ void CopyBound(const Vec& bound, ::Vec to) {
 // Runs `body` for a callback; an exception is kept for Solve to rethrow and stops SNESSolve.
 template <typename Body>
 PetscErrorCode Guard(SnesViRun* run, Body&& body) {
-  if (run->error) return PETSC_ERR_USER;
-  try {
-    body();
-    return 0;
-  } catch (...) {
-    run->error = std::current_exception();
-    return PETSC_ERR_USER;
-  }
+  return Captured(&run->error, body) ? 0 : PETSC_ERR_USER;
 }
 
 // F of petsc_mcp.h; a non-finite value is a domain error (the line search then cuts back).
@@ -263,17 +172,9 @@ PetscErrorCode RecordIteration(SNES snes, PetscInt iteration, PetscReal fnorm, v
     Try(SNESGetFunction(snes, &f, nullptr, nullptr), "SNESGetFunction");
     CopyIn(x, &run->x);
     CopyIn(f, &run->f);
-    SNESLineSearch line_search = nullptr;
-    PetscReal step = 0.0;
-    if (iteration > 0 && SNESGetLineSearch(snes, &line_search) == 0) {
-      SNESLineSearchGetLambda(line_search, &step);
-    }
-    IterationRecord record;
-    record.iteration = static_cast<int>(iteration);
-    record.merit = 0.5 * fnorm * fnorm;
+    IterationRecord record = SnesIterationRecord(snes, iteration, fnorm);
     record.residual_inf = McpNaturalResidual(run->x, run->f, run->bounds);
     record.comp_res = ComplementarityResidual(run->system.layout(), run->x);
-    record.step_length = step;
     run->result.history.push_back(record);
   });
 }
@@ -289,23 +190,13 @@ PetscErrorCode SnesViConvergenceTest(SNES snes, PetscInt iteration, PetscReal, P
   if (code == 0) code = SNESGetNumberFunctionEvals(snes, &funcs);
   if (code != 0) return code;
   if (iteration == 0) run->initial_norm = fnorm;
-  *reason = SNES_CONVERGED_ITERATING;
-  if (std::isnan(fnorm)) {
-    *reason = SNES_DIVERGED_FNORM_NAN;
-  } else if (fnorm < atol) {
-    *reason = SNES_CONVERGED_FNORM_ABS;
-  } else if (max_funcs >= 0 && funcs >= max_funcs) {
-    *reason = SNES_DIVERGED_FUNCTION_COUNT;
-  } else if (iteration > 0 && fnorm < rtol * run->initial_norm) {
-    *reason = SNES_CONVERGED_FNORM_RELATIVE;
-  }
+  // SNESVI checks its iteration limit itself.
+  *reason = SnesTestReason({fnorm, fnorm < atol, false, max_funcs >= 0 && funcs >= max_funcs,
+                            iteration > 0 && fnorm < rtol * run->initial_norm});
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
   return Guard(run, [&] {
-    run->timed_out = PastTimeLimit(run->controls, run->clock);
-    if (run->timed_out || (run->controls.interrupted && run->controls.interrupted())) {
-      run->stopped = true;
-      *reason = SNES_DIVERGED_FUNCTION_COUNT;  // any divergence stops SNESSolve; see `stopped`
-    }
+    // Any divergence stops SNESSolve; the watch says why.
+    if (run->watch.Stop([](bool mine) { return mine; })) *reason = SNES_DIVERGED_FUNCTION_COUNT;
   });
 }
 
@@ -426,8 +317,7 @@ void SnesVi::Solve(McpStepEquations& system, const McpBounds& bounds, const Solv
   }
   CopyIn(o.x, x);
 
-  RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI",
-                    {run.stopped, run.timed_out, controls.time_limit_s}, result);
+  RecordSnesOutcome(o.snes, run.jacobian_evals, options_, "PETSc SNESVI", run.watch.stop(), result);
   if (code != 0) {
     // A PETSc failure inside the solve (e.g. the factorisation): the step fails with it, and
     // the operands are remade on the next solve.

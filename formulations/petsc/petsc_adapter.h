@@ -1,16 +1,8 @@
-// The adapter between the PETSc formulations (petsc_rsls.cc, petsc_ssls.cc) and PETSc: the
-// process (PETSc started once, its error handling turned into exceptions and statuses), one
-// SNESVI kept across the steps of a path, one run of it on the MCP of petsc_mcp.h, PETSc's
-// counters, and SNESConvergedReason mapped onto StepResult. Built only when PETSc is found
-// (petsc.cmake; petsc_stub.cc otherwise).
-//
-// The process. PETSc is started on first use with
-//   -no_signal_handler   the suite's SIGINT / SIGTERM handling (exit 4, records kept) stays;
-//   -skip_petscrc        no ~/.petscrc or ./.petscrc is read (PETSC_OPTIONS still is);
-// on PETSC_COMM_SELF throughout, so a process launched without mpirun is one rank, and every
-// call into PETSc runs under an error handler that records PETSc's message instead of printing
-// it; the failed call then throws (std::invalid_argument for a bad option value) or, inside a
-// solve, the step fails with the message (PetscErrorCapture).
+// The adapter between the PETSc formulations (petsc_vi_formulation.cc) and PETSc: one SNESVI
+// kept across the steps of a path, one run of it on the MCP of petsc_mcp.h, PETSc's counters,
+// and SNESConvergedReason mapped onto StepResult; PETSc's process (started once, its errors
+// recorded) is petsc_process.h's, the callbacks' glue shared with the distributed backend
+// snes_glue.h's. Built only when PETSc is found (petsc.cmake; petsc_stub.cc otherwise).
 //
 // The options. PETSc's options database is the interface: each formulation instance inserts,
 // under an option prefix of its own ("cb<k>_"), its defaults and then the user's string (the
@@ -55,31 +47,10 @@
 
 #include "formulations/common/config.h"
 #include "formulations/petsc/petsc_mcp.h"
+#include "formulations/petsc/petsc_process.h"
 #include "step/formulation.h"
 
 namespace cb {
-
-// Whether PETSc has been finalised (at exit): objects left to free are PETSc's no more.
-bool PetscGone();
-
-// While it lives, PETSc's errors are recorded (the first report of the one being raised), not
-// printed; PetscErrorText then quotes it.
-class PetscErrorCapture {
- public:
-  PetscErrorCapture();
-  ~PetscErrorCapture();
-  PetscErrorCapture(const PetscErrorCapture&) = delete;
-  PetscErrorCapture& operator=(const PetscErrorCapture&) = delete;
-};
-
-// "PETSc <call> failed (error <code>): <the recorded message>".
-std::string PetscErrorText(PetscErrorCode code, const char* call);
-
-// Throws std::runtime_error with PetscErrorText when `code` is an error.
-void Try(PetscErrorCode code, const char* call);
-
-// Starts PETSc unless the process already has (see the top of the file); once per process.
-void StartPetsc();
 
 // The options prefix ("<family><k>_") under which the options text `options` goes into PETSc's
 // options database: the same for the same text, so that instances made again and again (a
@@ -128,15 +99,5 @@ class SnesVi {
   bool options_checked_ = false;
   std::unique_ptr<Objects> objects_;
 };
-
-}  // namespace cb
-
-namespace cb {
-
-// The formulation both PETSc formulations are (petsc_vi_formulation.cc): the step as the MCP of
-// petsc_mcp.h, solved by a SnesVi of `snes_type` with the backend option `petsc_options`.
-std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
-                                                    const std::string& snes_type,
-                                                    const FormulationConfig& config);
 
 }  // namespace cb

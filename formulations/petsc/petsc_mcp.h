@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "formulations/common/step_equations.h"
+#include "formulations/common/step_rows.h"
 
 namespace cb {
 
@@ -110,5 +111,10 @@ bool SamePattern(const McpRowMap& map, const SpMat& s);
 void FillMcpValues(const McpRowMap& map, const SpMat& s, double* values);
 // The MCP Jacobian as a sparse matrix (tests).
 SpMat McpJacobian(const McpRowMap& map, const SpMat& s);
+
+// The PETSc formulations' step as rows (common/step_rows.h; petsc_mcp_rows.cc): F of the MCP on
+// `local` within the bounds of `step`, from MakeMcpStart, its Jacobian column-compressed.
+StepRows McpRows(const StepProblem& step, const StepProblem& local, const StartPoint& start,
+                 std::shared_ptr<StepEquationSystem::PatternCache> cache);
 
 }  // namespace cb

@@ -1,5 +1,19 @@
-// The formulation petsc-rsls and petsc-ssls share: the step as the MCP of petsc_mcp.h, handed to
-// one SNESVI (petsc_adapter.h) that the formulation keeps across the steps of a path.
+// The PETSc formulations, each the step as the MCP of petsc_mcp.h handed to one SNESVI
+// (petsc_adapter.h, options there) that the formulation keeps across the steps of a path:
+//
+// petsc-rsls: the step as the MCP of petsc_mcp.h solved by PETSc's SNESVINEWTONRSLS, the
+// reduced-space active-set Newton method (Benson and Munson, Optim. Methods Softw. 21 (2006)):
+// at each iterate the unknowns at a bound whose row pushes outward (here the pairs with r^_p = 0
+// and -g^_p < 0, i.e. open with a positive gap) are held at the bound, and Newton with a
+// backtracking line search runs on the rest, the reduced Jacobian factorised by the direct
+// solve of petsc_adapter.h. Close to the suite's active-set formulation; the active set is
+// PETSc's.
+//
+// petsc-ssls: the step as the MCP of petsc_mcp.h solved by PETSc's SNESVINEWTONSSLS, the
+// semismooth Newton method on the Fischer-Burmeister reformulation of the bounds (Munson,
+// Facchinei, Ferris, Fischer and Kanzow, INFORMS J. Comput. 13 (2001)): for r^_p <= 0 with row
+// -g^_p, PETSc's FB function of (-r^_p, g^_p), (12) with rho = 0 as nonsmooth-fb has it, and
+// the free rows as they are; Newton with a line search on 1/2 ||FB||^2 over the full system.
 //
 // Starts (MakeMcpStart, petsc_mcp.h): warm, docs/method.md section 4, (38)-(41); SNESVI has no
 // separate input for an active set, so the previous step's contact status enters through that
@@ -11,6 +25,7 @@
 #include <memory>
 #include <string>
 
+#include "formulations/petsc/petsc.h"
 #include "formulations/petsc/petsc_adapter.h"
 
 namespace cb {
@@ -51,8 +66,6 @@ class PetscViFormulation final : public Formulation {
   std::shared_ptr<StepEquationSystem::PatternCache> cache_;
 };
 
-}  // namespace
-
 std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
                                                     const std::string& snes_type,
                                                     const FormulationConfig& config) {
@@ -61,6 +74,16 @@ std::unique_ptr<Formulation> MakePetscViFormulation(const std::string& name,
   const std::string user_options = reader.GetText("petsc_options", "");
   reader.Finish();
   return std::make_unique<PetscViFormulation>(name, snes_type, user_options);
+}
+
+}  // namespace
+
+std::unique_ptr<Formulation> MakePetscRsls(const FormulationConfig& config) {
+  return MakePetscViFormulation("petsc-rsls", SNESVINEWTONRSLS, config);
+}
+
+std::unique_ptr<Formulation> MakePetscSsls(const FormulationConfig& config) {
+  return MakePetscViFormulation("petsc-ssls", SNESVINEWTONSSLS, config);
 }
 
 }  // namespace cb

@@ -1,6 +1,5 @@
 #include "formulations/petsc_dist/dist_steps.h"
 
-#include <mpi.h>
 #include <petscsnes.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "core/timer.h"
 #include "formulations/petsc/petsc_adapter.h"
 #include "formulations/petsc/petsc_unused_options.h"
+#include "formulations/petsc/snes_glue.h"
 #include "formulations/petsc_dist/dist_line_search.h"
 #include "formulations/petsc_dist/element_partition.h"
 #include "formulations/petsc_dist/field_split.h"
@@ -22,20 +22,11 @@
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 #include "model/body_contact_model.h"
-#include "step/time_limit.h"
+#include "parallel/processes.h"
 
 namespace cb {
 
 bool DistAvailable() { return true; }
-std::string MpiVersion() {
-  // Allowed before MPI_Init (MPI 3.1 section 8.7).
-  char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};
-  int length = 0;
-  if (MPI_Get_library_version(text, &length) != MPI_SUCCESS) return "";
-  std::string version(text, static_cast<std::size_t>(length));
-  const auto end = version.find_first_of(",\n");  // "Open MPI v4.1.4, package: ..."
-  return end == std::string::npos ? version : version.substr(0, end);
-}
 
 namespace {
 
@@ -44,13 +35,6 @@ bool PetscRunning() {
   PetscInitialized(&initialized);
   PetscFinalized(&finalized);
   return initialized && !finalized;
-}
-
-// Whether any process says so (a decision every process then takes).
-bool AnyProcess(bool mine) {
-  int local = mine ? 1 : 0, any = 0;
-  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-  return any != 0;
 }
 
 // Several processes need MPI's own functions and the parallel MUMPS (parallel_libraries.h);
@@ -66,41 +50,7 @@ void RequireParallelLibraries() {
       "-DCONTACTBENCH_WITH_SICONOS=OFF (docs/scale-out.md)");
 }
 
-// The partition Objects::Make last made, and of which body (ElementsOfEachProcess).
-struct LastPartition {
-  const ElasticBody* body = nullptr;
-  std::vector<std::vector<int>> parts;
-};
-LastPartition& Partitioned() {
-  static LastPartition last;
-  return last;
-}
-
 }  // namespace
-
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body) {
-  const LastPartition& last = Partitioned();
-  if (last.body != &body) return {};
-  std::size_t elements = 0;
-  for (const auto& part : last.parts) elements += part.size();
-  // Another body made at the address of a destroyed one is told apart by its element count.
-  if (elements != body.Cells().size()) return {};
-  return last.parts;
-}
-
-int DistributedRank() {
-  if (!PetscRunning()) return 0;
-  PetscMPIInt rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  return rank;
-}
-
-int DistributedSize() {
-  if (!PetscRunning()) return 1;
-  PetscMPIInt size = 1;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  return size;
-}
 
 bool CanDistribute(const StepProblem& step, std::string* why) {
   if (dynamic_cast<const BodyContactModel*>(step.model) != nullptr) return true;
@@ -120,6 +70,7 @@ struct DistributedSteps::Objects {
   // What the objects were made for: the model, the system's size, and this process's share.
   const ContactModel* model = nullptr;
   int size = 0;
+  ElementSplit* element_split = nullptr;              // the run's, told each partition of the body
   bool split_pending = false;                         // SplitWhereAsked not yet run for `model`
   std::shared_ptr<const OwnPairsModel> contact_only;  // its pairs, without elements
   std::shared_ptr<const ElasticBody> own;             // its elements
@@ -151,15 +102,13 @@ struct DistributedSteps::Objects {
 
   // One solve's context for the callbacks.
   const StepProblem* step = nullptr;
-  const LocalStepEquations* equations = nullptr;
-  const SolveControls* controls = nullptr;
+  const StepRows* equations = nullptr;
   StepResult* result = nullptr;
-  Stopwatch clock;
+  SnesControlsWatch watch;
   double residual_tol = 0.0;
   bool vi = false;
   // The serial Newton's line search, when it is SNES's (no -snes_linesearch_type given).
   std::unique_ptr<DistLineSearch> line_search;
-  bool stopped = false, timed_out = false;
   int jacobian_evals = 0;
   std::exception_ptr error;
   Vec full, displacement, local_f, element_force;
@@ -186,15 +135,15 @@ struct DistributedSteps::Objects {
     Try(VecScatterCreateToAll(x, &to_all, &all), "VecScatterCreateToAll");
     const PetscInt* ranges = nullptr;
     Try(VecGetOwnershipRanges(x, &ranges), "VecGetOwnershipRanges");
-    std::vector<int> starts(static_cast<std::size_t>(DistributedSize()) + 1);
+    std::vector<int> starts(static_cast<std::size_t>(ProcessCount()) + 1);
     for (std::size_t k = 0; k < starts.size(); ++k) starts[k] = static_cast<int>(ranges[k]);
-    const auto rank = static_cast<std::size_t>(DistributedRank());
+    const auto rank = static_cast<std::size_t>(ProcessRank());
 
     const auto& whole = dynamic_cast<const BodyContactModel&>(*s.model);
     const ElasticBody& body = whole.body();
     const auto parts = PartitionElements(body, starts);
     own = body.Restricted(parts[rank]);
-    Partitioned() = {&body, parts};
+    if (element_split != nullptr) element_split->Record(parts, body.Cells().size());
     contact_only = std::make_shared<OwnPairsModel>(
         whole, PartitionPairs(body, whole.pairs(), starts)[rank], first, last);
     element_pattern = ScatterPattern(body.num_dofs(), body.num_dofs(), own->StiffnessEntries());
@@ -402,16 +351,7 @@ using Objects = DistributedSteps::Objects;
 // on any (the exception is kept where it was thrown, for Solve to rethrow).
 template <typename Body>
 bool Agreed(Objects* o, Body&& body) {
-  bool failed = static_cast<bool>(o->error);
-  if (!failed) {
-    try {
-      body();
-    } catch (...) {
-      o->error = std::current_exception();
-      failed = true;
-    }
-  }
-  return !AnyProcess(failed);
+  return !AnyProcess(!Captured(&o->error, body));
 }
 
 PetscErrorCode EvaluateResidual(SNES snes, ::Vec x, ::Vec f, void* context) {
@@ -450,23 +390,16 @@ PetscErrorCode EvaluateJacobian(SNES, ::Vec x, ::Mat, ::Mat, void* context) {
 PetscErrorCode RecordIteration(SNES snes, PetscInt iteration, PetscReal fnorm, void* context) {
   auto* o = static_cast<Objects*>(context);
   ::Vec x = nullptr, f = nullptr;
-  PetscReal inf = 0.0, step = 0.0;
+  PetscReal inf = 0.0;
   PetscErrorCode code = SNESGetSolution(snes, &x);
   if (code == 0) code = SNESGetFunction(snes, &f, nullptr, nullptr);
   if (code == 0) code = VecNorm(f, NORM_INFINITY, &inf);
-  SNESLineSearch line_search = nullptr;
-  if (code == 0 && iteration > 0 && SNESGetLineSearch(snes, &line_search) == 0) {
-    SNESLineSearchGetLambda(line_search, &step);
-  }
   if (code != 0) return code;
+  IterationRecord record = SnesIterationRecord(snes, iteration, fnorm);
+  record.residual_inf = inf;
   if (!Agreed(o, [&] {
         o->Gather(x);
-        IterationRecord record;
-        record.iteration = static_cast<int>(iteration);
-        record.merit = 0.5 * fnorm * fnorm;
-        record.residual_inf = inf;
         record.comp_res = ComplementarityResidual(o->equations->layout, o->full);
-        record.step_length = step;
         o->result->history.push_back(record);
       })) {
     return PETSC_ERR_USER;
@@ -486,23 +419,11 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
   if (code == 0 && !o->vi) code = SNESGetFunction(snes, &f, nullptr, nullptr);
   if (code == 0 && !o->vi) code = VecNorm(f, NORM_INFINITY, &inf);
   if (code != 0) return code;
-  *reason = SNES_CONVERGED_ITERATING;
-  if (std::isnan(fnorm)) {
-    *reason = SNES_DIVERGED_FNORM_NAN;
-  } else if (o->vi ? fnorm < atol : inf <= o->residual_tol) {
-    *reason = SNES_CONVERGED_FNORM_ABS;
-  } else if (iteration >= max_its) {
-    *reason = SNES_DIVERGED_MAX_IT;
-  } else if (max_funcs >= 0 && funcs >= max_funcs) {
-    *reason = SNES_DIVERGED_FUNCTION_COUNT;
-  }
+  *reason = SnesTestReason({fnorm, o->vi ? fnorm < atol : inf <= o->residual_tol,
+                            iteration >= max_its, max_funcs >= 0 && funcs >= max_funcs, false});
   if (*reason != SNES_CONVERGED_ITERATING) return 0;
-  const SolveControls& c = *o->controls;
-  const bool late = PastTimeLimit(c, o->clock);
-  const bool asked = c.interrupted && c.interrupted();
-  o->timed_out = AnyProcess(late);
-  o->stopped = o->timed_out || AnyProcess(asked);
-  if (o->stopped) *reason = SNES_DIVERGED_FUNCTION_COUNT;  // stops SNESSolve; see `stopped`
+  // Any divergence stops SNESSolve; the watch says why.
+  if (o->watch.Stop(AnyProcess)) *reason = SNES_DIVERGED_FUNCTION_COUNT;
   return 0;
 }
 
@@ -518,12 +439,14 @@ PetscErrorCode ConvergenceTest(SNES snes, PetscInt iteration, PetscReal, PetscRe
 
 // --- the instance ------------------------------------------------------------------------------
 
-DistributedSteps::DistributedSteps(const std::string& defaults, const std::string& user_options)
+DistributedSteps::DistributedSteps(const std::string& defaults, const std::string& user_options,
+                                   ElementSplit* element_split)
     : options_(user_options.empty() ? defaults : defaults + " " + user_options),
       user_options_(user_options),
       objects_(std::make_unique<Objects>()) {
+  objects_->element_split = element_split;
   StartPetsc();
-  if (DistributedSize() > 1) RequireParallelLibraries();
+  if (Distributed()) RequireParallelLibraries();
   PetscErrorCapture capture;
   const std::string prefix = OptionsPrefixFor("cbd", options_);
   Try(PetscOptionsPrefixPush(nullptr, prefix.c_str()), "PetscOptionsPrefixPush");
@@ -570,9 +493,9 @@ const StepProblem& DistributedSteps::ContactOnlyStep(const StepProblem& step, in
   return o.contact_only_step;
 }
 
-void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& equations,
-                             const DistBounds* bounds, const SolverOptions& solver,
-                             const SolveControls& controls, Vec* x, StepResult* result) {
+void DistributedSteps::Solve(const StepProblem& step, const StepRows& equations,
+                             const SolverOptions& solver, const SolveControls& controls, Vec* x,
+                             StepResult* result) {
   PetscErrorCapture capture;
   Objects& o = *objects_;
   const int n = equations.layout.size();
@@ -580,19 +503,17 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
     throw std::logic_error("DistributedSteps::Solve: ContactOnlyStep(step, " + std::to_string(n) +
                            ") was not called first");
   }
-  o.vi = bounds != nullptr;
+  o.vi = equations.bounded();
   if (o.split_pending) {
     if (!o.vi) o.SplitWhereAsked(dynamic_cast<const BodyContactModel&>(*step.model));
     o.split_pending = false;
   }
   o.step = &step;
   o.equations = &equations;
-  o.controls = &controls;
   o.result = result;
-  o.clock = Stopwatch();
+  o.watch.Start(&controls);
   o.residual_tol = solver.residual_tol;
   if (o.line_search) o.line_search->Start(solver);
-  o.stopped = o.timed_out = false;
   o.jacobian_evals = 0;
   o.error = nullptr;
   o.Scatter(*x, o.x);
@@ -611,7 +532,7 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   }
   Try(SNESSetFunction(o.snes, o.f, EvaluateResidual, &o), "SNESSetFunction");
   Try(SNESSetJacobian(o.snes, o.jacobian, o.jacobian, EvaluateJacobian, &o), "SNESSetJacobian");
-  if (bounds != nullptr) {
+  if (o.vi) {
     if (o.lower == nullptr) {
       Try(VecDuplicate(o.x, &o.lower), "VecDuplicate");
       Try(VecDuplicate(o.x, &o.upper), "VecDuplicate");
@@ -622,8 +543,8 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
       }
       return b;
     };
-    o.Scatter(marked(bounds->lower), o.lower);
-    o.Scatter(marked(bounds->upper), o.upper);
+    o.Scatter(marked(equations.lower), o.lower);
+    o.Scatter(marked(equations.upper), o.upper);
     Try(SNESVISetVariableBounds(o.snes, o.lower, o.upper), "SNESVISetVariableBounds");
   }
   const PetscErrorCode code = SNESSolve(o.snes, nullptr, o.x);
@@ -631,9 +552,8 @@ void DistributedSteps::Solve(const StepProblem& step, const LocalStepEquations& 
   o.Gather(o.x);
   *x = o.full;
 
-  RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES",
-                    {o.stopped, o.timed_out, controls.time_limit_s}, result);
-  result->details["processes"] = std::to_string(DistributedSize());
+  RecordSnesOutcome(o.snes, o.jacobian_evals, options_, "PETSc SNES", o.watch.stop(), result);
+  result->details["processes"] = std::to_string(ProcessCount());
   if (code != 0) {
     const char* text = nullptr;
     PetscErrorMessage(code, &text, nullptr);

@@ -45,27 +45,19 @@
 
 #include "core/sparse.h"
 #include "formulations/common/step_equations.h"
+#include "formulations/common/step_rows.h"
+#include "parallel/element_split.h"
 #include "step/formulation.h"
 
 namespace cb {
 
-// The formulation's serial rows on the contact-only step (see the top of the file).
-struct LocalStepEquations {
-  std::function<bool(const Vec& x, Vec* f)> residual;  // false where not finite
-  std::function<void(const Vec& x, SpMat* jacobian)> jacobian;
-  StepEquationLayout layout;
-};
-
-// The bounds of SNESVI, full vectors (infinite where free); none for the equations.
-struct DistBounds {
-  Vec lower, upper;
-};
-
 class DistributedSteps {
  public:
   // `defaults` and then `user_options` (PETSc's syntax); throws std::invalid_argument naming
-  // an option PETSc refuses. Starts PETSc (and MPI) on first use.
-  DistributedSteps(const std::string& defaults, const std::string& user_options);
+  // an option PETSc refuses. Starts PETSc (and MPI) on first use. Each partition of a body
+  // is recorded in `element_split` (none: not recorded).
+  DistributedSteps(const std::string& defaults, const std::string& user_options,
+                   ElementSplit* element_split = nullptr);
   ~DistributedSteps();
   DistributedSteps(const DistributedSteps&) = delete;
   DistributedSteps& operator=(const DistributedSteps&) = delete;
@@ -79,14 +71,14 @@ class DistributedSteps {
   // rows; valid until the next call, which Solve must follow for the same step and size.
   const StepProblem& ContactOnlyStep(const StepProblem& step, int size);
 
-  // Solves from *x (full, identical on every process), leaving the last iterate in *x and
-  // filling `result` (status, message, counts, history, details; not the point). With
-  // `bounds`, SNESVI; otherwise converged when ||F||_inf <= solver.residual_tol, with the
-  // serial Newton's line search and `solver`'s settings of it (dist_line_search.h) unless the
-  // options name another -snes_linesearch_type.
-  void Solve(const StepProblem& step, const LocalStepEquations& equations, const DistBounds* bounds,
-             const SolverOptions& solver, const SolveControls& controls, Vec* x,
-             StepResult* result);
+  // Solves the formulation's serial rows on the contact-only step (`equations`, see the top of
+  // the file; their start and finish are the caller's) from *x (full, identical on every
+  // process), leaving the last iterate in *x and filling `result` (status, message, counts,
+  // history, details; not the point). With bounds, SNESVI; otherwise converged when
+  // ||F||_inf <= solver.residual_tol, with the serial Newton's line search and `solver`'s
+  // settings of it (dist_line_search.h) unless the options name another -snes_linesearch_type.
+  void Solve(const StepProblem& step, const StepRows& equations, const SolverOptions& solver,
+             const SolveControls& controls, Vec* x, StepResult* result);
 
  private:
   // The user's options, refused after the first solve that iterated when PETSc left any of

@@ -9,7 +9,12 @@ if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/dist_line_search.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
-    ${CMAKE_CURRENT_LIST_DIR}/dist_formulations.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_formulation.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_implicit_fb.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_nonsmooth_fb.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_active_set.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_petsc_rsls.cc
+    ${CMAKE_CURRENT_LIST_DIR}/dist_petsc_ssls.cc
     ${CMAKE_CURRENT_LIST_DIR}/field_split.cc
     ${CMAKE_CURRENT_LIST_DIR}/node_blocks.cc
     ${CMAKE_CURRENT_LIST_DIR}/parallel_libraries.cc)

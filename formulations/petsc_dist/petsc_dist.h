@@ -1,7 +1,8 @@
 // The distributed backend: the step systems of the equation formulations and of PETSc's SNESVI
 // over MPI processes (docs/scale-out.md): `dist-implicit-fb`, `dist-nonsmooth-fb`,
 // `dist-active-set` (PETSc SNES newtonls on the rows of implicit-fb, nonsmooth-fb, active-set)
-// and `dist-petsc-rsls`, `dist-petsc-ssls` (SNESVI on the MCP of petsc-rsls / petsc-ssls).
+// and `dist-petsc-rsls`, `dist-petsc-ssls` (SNESVI on the MCP of petsc-rsls / petsc-ssls), each
+// its serial counterpart's rows (common/step_rows.h) in a file of its own (dist_formulation.h).
 // Launched with `mpirun -n N contactbench run --formulation dist-...`; without mpirun, one
 // process. Without PETSc, petsc_dist_stub.cc stands in (petsc_dist.cmake chooses).
 #pragma once
@@ -16,24 +17,13 @@
 
 namespace cb {
 
-// Whether this build has the distributed backend (PETSc with MPI).
+// Whether this build has the distributed backend (PETSc with MPI). The processes of the run
+// (rank, count, collectives) are src/parallel/processes.h's.
 bool DistAvailable();
-// The MPI library the distributed backend is linked with ("Open MPI v4.1.4"); "" without it.
-std::string MpiVersion();
-
-// This process's rank and the number of processes of a distributed run: 0 and 1 until a
-// distributed formulation has started PETSc (and MPI), and always without PETSc.
-int DistributedRank();
-int DistributedSize();
-
-// The elements of `body` (indices in the order of ElasticBody::Cells()) each process evaluates,
-// one list per process, as the distributed step system last partitioned `body` on this process
-// (element_partition.h; every process holds the same lists). Empty when no distributed solve
-// has partitioned `body` (one process without a dist-* solve yet, another body, no PETSc).
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody& body);
 
 // Registry factories; without PETSc they throw std::invalid_argument. Backend option
-// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h).
+// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h). Each
+// split of the body's elements over the processes goes to the config's element_split.
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig& config);

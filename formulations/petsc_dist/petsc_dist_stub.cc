@@ -15,10 +15,6 @@ namespace {
 }  // namespace
 
 bool DistAvailable() { return false; }
-std::string MpiVersion() { return ""; }
-int DistributedRank() { return 0; }
-int DistributedSize() { return 1; }
-std::vector<std::vector<int>> ElementsOfEachProcess(const ElasticBody&) { return {}; }
 std::string SequentialStandIn() { return ""; }
 std::string ParallelLibrariesPreload() { return ""; }
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig&) { Unavailable(); }

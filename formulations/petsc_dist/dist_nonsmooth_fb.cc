@@ -1,0 +1,22 @@
+// dist-nonsmooth-fb: nonsmooth-fb's rows (NonsmoothRows with the Fischer-Burmeister function)
+// over the processes, PETSc SNES newtonls (dist_formulation.h).
+#include <memory>
+#include <utility>
+
+#include "formulations/nonsmooth/nonsmooth.h"
+#include "formulations/petsc_dist/dist_formulation.h"
+#include "formulations/petsc_dist/petsc_dist.h"
+
+namespace cb {
+
+std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config) {
+  const auto rows = [](const StepProblem& step, const StepProblem& local, const StartPoint& start,
+                       const ImplicitFbOptions&,
+                       std::shared_ptr<StepEquationSystem::PatternCache> cache) {
+    return NonsmoothRows(step, local, start, ComplementarityFunction::kFischerBurmeister,
+                         std::move(cache));
+  };
+  return MakeDistFormulation({"dist-nonsmooth-fb", "newtonls", false, rows, nullptr}, config);
+}
+
+}  // namespace cb
