@@ -98,6 +98,22 @@ TEST(DistLinearSolveTest, AmgSolvesTheSupportedHertzBody) {
   EXPECT_LE(amg.counts.iterations, direct.counts.iterations + 1);
 }
 
+// A Krylov solve that stops short is reported as such, with its count and residual, not as a
+// bare SNES reason or a singular matrix: two FGMRES iterations cannot reach 1e-8 on P1.
+TEST(DistLinearSolveTest, AnUnconvergedKrylovSolveSaysSo) {
+  if (!DistAvailable()) GTEST_SKIP() << "built without PETSc";
+  const Fixture& f = FindFixture("block_n10");
+  FormulationConfig config = WithLinear("amg");
+  config.options["petsc_options"] = "-ksp_max_it 2";
+  const StepResult result =
+      MakeDistActiveSet(config)->Solve(f.Step(), StartFor(f, StartKind::kCold));
+  EXPECT_EQ(result.status, Status::kFailed);
+  EXPECT_NE(result.message.find("the linear solver did not converge in 2 iterations"),
+            std::string::npos)
+      << result.message;
+  EXPECT_NE(result.message.find("DIVERGED_ITS"), std::string::npos) << result.message;
+}
+
 TEST(DistLinearSolveTest, SnesViRefusesTheLinearChoice) {
   if (!DistAvailable()) GTEST_SKIP() << "built without PETSc";
   EXPECT_THROW(MakeDistPetscRsls(WithLinear("amg")), std::invalid_argument);

@@ -5,6 +5,7 @@
 #include <exception>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/timer.h"
@@ -47,6 +48,29 @@ std::string OptionsPrefixFor(const std::string& family, const std::string& optio
   return family + std::to_string(it->second) + "_";
 }
 
+namespace {
+
+// Why SNES stopped, in words; a failed linear solve names the Krylov method's own reason, its
+// iteration count and residual (a Krylov failure is not a singular matrix).
+std::string SnesOutcomeText(SNES snes, SNESConvergedReason reason) {
+  if (reason != SNES_DIVERGED_LINEAR_SOLVE) return SnesReasonName(reason);
+  KSP ksp = nullptr;
+  KSPConvergedReason ksp_reason = KSP_CONVERGED_ITERATING;
+  PetscInt iterations = 0;
+  PetscReal residual = 0.0;
+  if (SNESGetKSP(snes, &ksp) != 0 || KSPGetConvergedReason(ksp, &ksp_reason) != 0 ||
+      KSPGetIterationNumber(ksp, &iterations) != 0 || KSPGetResidualNorm(ksp, &residual) != 0) {
+    return SnesReasonName(reason);
+  }
+  std::ostringstream text;
+  text << "the linear solver did not converge in " << iterations << " iterations (residual "
+       << residual << ", " << KSPConvergedReasons[ksp_reason] << "; " << SnesReasonName(reason)
+       << ")";
+  return text.str();
+}
+
+}  // namespace
+
 void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options,
                        const std::string& label, const SnesStop& stop, StepResult* result) {
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
@@ -61,7 +85,7 @@ void RecordSnesOutcome(SNES snes, int jacobian_evals, const std::string& options
       std::to_string(static_cast<int>(reason)) + " " + SnesReasonName(reason);
   result->details["petsc_options"] = options;
   result->status = MapSnesReason(reason);
-  result->message = label + ": " + SnesReasonName(reason);
+  result->message = label + ": " + SnesOutcomeText(snes, reason);
   if (stop.stopped) {
     result->status = stop.timed_out ? Status::kTimeLimit : Status::kStoppedByCaller;
     result->message =
