@@ -2,7 +2,6 @@
 // after the first solve with the options named, while options PETSc reads (its own, a
 // factorisation's read only when it first factors) run as before.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
