@@ -48,10 +48,7 @@ SolverSummary RunStepEquationSolver(EquationSolver& solver, StepEquationSystem& 
   result->message = summary.message;
   result->counts = {summary.iterations, summary.residual_evals, summary.jacobian_evals,
                     summary.linear_solves};
-  result->point.du = x->segment(l.du(), l.d);
-  result->point.g = step.scales.length * x->segment(l.g(), l.nc);
-  result->point.r = step.scales.force * x->segment(l.r(), l.nc);
-  result->point.dlambda = (*x)[l.dlambda()];
+  result->point = PointFromScaled(step, l, *x);
   result->details["final_merit"] = std::to_string(summary.final_merit);
   return summary;
 }

@@ -70,6 +70,10 @@ void FitIncrementToConstraint(const StepProblem& step, Eigen::Ref<Vec> du, doubl
 //  cold (report section 5.1): du0 = 0, g^0 = -1, r^0 = +1, dlambda0 fitted to the constraint.
 Vec MakeStepEquationStart(const StepProblem& step, const StartPoint& start, int size);
 
+// The answer in physical units from the scaled unknowns x of `layout`: du and dlambda as they
+// are, g = L g^ and r = R r^ (the scales of psi, docs/method.md section 4).
+StepPoint PointFromScaled(const StepProblem& step, const StepEquationLayout& layout, const Vec& x);
+
 // The square system of one step with the common blocks; derived classes provide the
 // complementarity rows and, with rho, the extra row.
 class StepEquationSystem : public EquationSystem {

@@ -62,4 +62,13 @@ Vec MakeStepEquationStart(const StepProblem& step, const StartPoint& start, int 
   return x;
 }
 
+StepPoint PointFromScaled(const StepProblem& step, const StepEquationLayout& layout, const Vec& x) {
+  StepPoint point;
+  point.du = x.segment(layout.du(), layout.d);
+  point.g = step.scales.length * x.segment(layout.g(), layout.nc);
+  point.r = step.scales.force * x.segment(layout.r(), layout.nc);
+  point.dlambda = x[layout.dlambda()];
+  return point;
+}
+
 }  // namespace cb

@@ -25,6 +25,7 @@
 #include <memory>
 #include <string>
 
+#include "formulations/common/step_equations.h"
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc/petsc_adapter.h"
 
@@ -52,11 +53,7 @@ class PetscViFormulation final : public Formulation {
     const McpBounds bounds = MakeMcpBounds(step);
     Vec x = MakeMcpStart(step, start, bounds);
     snes_.Solve(system, bounds, controls, &x, result);
-    const StepEquationLayout& l = system.layout();
-    result->point.du = x.segment(l.du(), l.d);
-    result->point.g = step.scales.length * x.segment(l.g(), l.nc);
-    result->point.r = step.scales.force * x.segment(l.r(), l.nc);
-    result->point.dlambda = x[l.dlambda()];
+    result->point = PointFromScaled(step, system.layout(), x);
   }
 
   std::string name_;

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "formulations/common/start_solvers.h"
+#include "formulations/common/step_equations.h"
 #include "formulations/petsc_dist/dist_steps.h"
 #include "formulations/petsc_dist/petsc_dist.h"
 
@@ -48,15 +49,6 @@ std::string DefaultOptions(const std::string& snes_type, const SolverOptions& so
          std::to_string(solver.max_iterations);
 }
 
-// The point in physical units from the scaled unknowns (common/step_equations.h).
-void FillPoint(const StepProblem& step, const Vec& x, StepResult* result) {
-  const StepEquationLayout l{step.num_dofs(), step.num_pairs(), false};
-  result->point.du = x.segment(l.du(), l.d);
-  result->point.g = step.scales.length * x.segment(l.g(), l.nc);
-  result->point.r = step.scales.force * x.segment(l.r(), l.nc);
-  result->point.dlambda = x[l.dlambda()];
-}
-
 class DistFormulation final : public Formulation {
  public:
   DistFormulation(DistRecipe recipe, const ImplicitFbOptions& options, const std::string& linear,
@@ -86,7 +78,7 @@ class DistFormulation final : public Formulation {
     Vec x = rows.start;
     steps_.Solve(step, rows, solver, controls, &x, result);
     if (rows.finish) rows.finish(x, result);
-    FillPoint(step, x, result);
+    result->point = PointFromScaled(step, {step.num_dofs(), step.num_pairs(), false}, x);
   }
 
   DistRecipe recipe_;
