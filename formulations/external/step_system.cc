@@ -50,13 +50,7 @@ Vec ExternalStepSystem::Start(const StartPoint& start) const {
 }
 
 StepPoint ExternalStepSystem::ToPoint(const Vec& x) const {
-  const StepEquationLayout& l = layout();
-  StepPoint point;
-  point.du = x.segment(l.du(), l.d);
-  point.g = step_.scales.length * x.segment(l.g(), l.nc);
-  point.r = step_.scales.force * x.segment(l.r(), l.nc);
-  point.dlambda = x[l.dlambda()];
-  return point;
+  return PointFromScaled(step_, layout(), x);
 }
 
 Vec ExternalStepSystem::FromPoint(const StepPoint& point) const {

@@ -185,13 +185,6 @@ void NloptMpccProblem::Bounds(std::vector<double>* lower, std::vector<double>* u
   }
 }
 
-StepPoint NloptMpccProblem::Point(const Vec& z) const {
-  StepPoint point;
-  point.du = z.segment(layout_.du(), layout_.d);
-  point.g = step_.scales.length * z.segment(layout_.g(), layout_.nc);
-  point.r = step_.scales.force * z.segment(layout_.r(), layout_.nc);
-  point.dlambda = z[layout_.dlambda()];
-  return point;
-}
+StepPoint NloptMpccProblem::Point(const Vec& z) const { return PointFromScaled(step_, layout_, z); }
 
 }  // namespace cb
