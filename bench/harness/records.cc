@@ -4,6 +4,7 @@
 
 #include "harness/interrupt.h"
 #include "model/complementarity_model.h"
+#include "verdict/natural_map_error.h"
 
 namespace cb::harness {
 
@@ -32,7 +33,7 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
     }
     ++repeat_disagreements_;
   }
-  files_->steps().Write({label_, problem_, a});
+  files_->steps().Write({label_, problem_, a, NaturalMapError(*problem_.model, a.state)});
   for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
   ShowProgress(a);
 }
