@@ -210,8 +210,9 @@ const RecordSchema<AttemptRow>& StepsSchema() {
           {"fclib_error",
            "the FCLIB literature's error of the state the attempt reached, as an answer of the "
            "fixed-load problem at its lambda: natural-map residual relative to the data, as "
-           "`fclib_error` of `problems.csv` (`src/verdict/natural_map_error.h`; nan for a "
-           "nonlinear problem)",
+           "`fclib_error` of `problems.csv` (`src/verdict/natural_map_error.h`), for a problem "
+           "read from an FCLIB file and an LCP; nan for every other problem (on a linear body it "
+           "would cost a factorisation of K per step)",
            [](const D& d) -> Cell { return d.fclib_error; }},
           {"n_contact", "pairs in contact at the state the attempt reached",
            [](const D& d) -> Cell { return d.record.n_contact; }},
