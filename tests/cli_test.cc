@@ -405,7 +405,7 @@ TEST(CliTest, RunWritesTheFiveRecordFiles) {
   EXPECT_EQ(accepted, 60);
   EXPECT_EQ(steps[0].rfind("problem,formulation,solver,start,step,lambda,control_disp,iterations,"
                            "residual_evals,jacobian_evals,linear_solves,time_s,found,verified,"
-                           "eq_res,comp_res,feas_res,step_res,n_contact,kink",
+                           "eq_res,comp_res,feas_res,step_res,fclib_error,n_contact,kink",
                            0),
             0u)
       << steps[0];

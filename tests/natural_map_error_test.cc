@@ -76,6 +76,24 @@ TEST(NaturalMapError, GlobalIsTheVelocityErrorAndTheContactsOverOnePlusF) {
               std::sqrt(8.0) / (1.0 + std::sqrt(80.0)), 1e-15);
 }
 
+// K = [1 1; 1 1] (singular: the motion (1, -1) costs nothing, as a body held by its contacts
+// alone moves rigidly) and a K one rounding error away from it: K^{-1} e would be rounding
+// amplified, so the error is not defined.
+TEST(NaturalMapError, UndefinedForASingularStiffness) {
+  for (const double perturbation : {0.0, 1e-15}) {
+    SpMat k(2, 2), n(2, 1);
+    k.insert(0, 0) = 1.0;
+    k.insert(0, 1) = 1.0;
+    k.insert(1, 0) = 1.0;
+    k.insert(1, 1) = 1.0 + perturbation;
+    n.insert(0, 0) = 1.0;
+    const LinearContactModel body(k, n, Vec::Ones(1), Vec2(-1.0, -1.0));
+    EXPECT_TRUE(std::isnan(
+        NaturalMapError(FixedLoad(body, 1.0), Point(Vec2(-1.0, 0.0), Vec::Zero(1), 1.0))))
+        << perturbation;
+  }
+}
+
 TEST(NaturalMapError, UndefinedForANonlinearModel) {
   const Problem truss = MakeProblem("two-bar", {});
   const StepProblem step = FixedLoad(*truss.model, 1.0);

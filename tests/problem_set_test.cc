@@ -114,6 +114,55 @@ TEST_F(ProblemSet, ASkippedFormulationIsARowWithTheReason) {
   }
 }
 
+// A directory of the suite's own JSON problem files beside an FCLIB file: each read and solved
+// (a Gmsh mesh is read through the JSON file that names it, not as a problem of its own); a
+// file that cannot be read (no JSON, a problem traced by arc length) is a row with the reason,
+// and the set goes on. A list of files (comma-separated) is a set too.
+TEST_F(ProblemSet, JsonFilesJoinTheSetAndUnreadableOnesAreRows) {
+  const auto dir = TempDir("mixed");
+  const auto set = dir / "set";
+  std::filesystem::create_directories(set);
+  const auto examples = ::cb::testing_support::SourceRoot() / "examples";
+  for (const char* name : {"q4-block-gmsh.json", "q4-block-gmsh.msh", "lcp-dense-2x2.json",
+                           "truss-2d-bar-wall.json"}) {
+    std::filesystem::copy_file(examples / name, set / name);
+  }
+  std::filesystem::copy_file(kData / "CubeH8.hdf5", set / "CubeH8.hdf5");
+  std::ofstream(set / "broken.json") << "{ not json";
+  const auto out = RunContactbench("compare --problem-dir " + set.string() +
+                                   " --set friction=ignore --formulations active-set --out " +
+                                   (dir / "out").string());
+  ASSERT_EQ(out.status, 0) << out.output;
+  std::map<std::string, std::map<std::string, std::string>> by_file;
+  for (const auto& row : ReadCsv(dir / "out" / "problems.csv")) {
+    by_file[std::filesystem::path(row.at("source")).filename().string()] = row;
+  }
+  ASSERT_EQ(by_file.size(), 5u);  // the mesh is no problem of its own
+  for (const char* solved : {"CubeH8.hdf5", "q4-block-gmsh.json", "lcp-dense-2x2.json"}) {
+    EXPECT_EQ(by_file.at(solved).at("status"), "verified") << solved;
+    EXPECT_EQ(by_file.at(solved).at("formulation"), "active-set") << solved;
+  }
+  const auto& broken = by_file.at("broken.json");
+  EXPECT_EQ(broken.at("status"), "unreadable");
+  EXPECT_EQ(broken.at("formulation"), "");
+  EXPECT_EQ(broken.at("fclib_error"), "nan");
+  EXPECT_NE(broken.at("message").find("broken.json"), std::string::npos) << broken.at("message");
+  const auto& traced = by_file.at("truss-2d-bar-wall.json");
+  EXPECT_EQ(traced.at("status"), "unreadable");
+  EXPECT_NE(traced.at("message").find("traced by arc length"), std::string::npos);
+
+  // The same files as a list: the unreadable one is a row there too.
+  const auto listed =
+      RunContactbench("compare --problem-dir " + (set / "lcp-dense-2x2.json").string() + "," +
+                      (set / "broken.json").string() + " --formulations active-set --out " +
+                      (dir / "list").string());
+  ASSERT_EQ(listed.status, 0) << listed.output;
+  const auto rows = ReadCsv(dir / "list" / "problems.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("status"), "verified");
+  EXPECT_EQ(rows[1].at("status"), "unreadable");
+}
+
 TEST_F(ProblemSet, BadSetsAreRefusedBeforeAnyWork) {
   const auto dir = TempDir("refused");
   struct Case {
@@ -126,7 +175,7 @@ TEST_F(ProblemSet, BadSetsAreRefusedBeforeAnyWork) {
       {set + " --set friction=ignore --starts cold", "--starts: not with --problem-dir"},
       {set + " --set friction=ignore --steps 3", "--steps: not with --problem-dir"},
       {" --problem-dir " + (dir / "missing").string(), "neither a directory nor a file"},
-      {" --problem-dir " + dir.string(), "holds no FCLIB file"},
+      {" --problem-dir " + dir.string(), "holds no problem file"},
       {set + "," + (kData / "CubeH8.hdf5").string() + " --set friction=ignore", "named twice"},
       {" --problem-dir " +
            (::cb::testing_support::SourceRoot() / "examples/truss-2d-bar-wall.json").string(),

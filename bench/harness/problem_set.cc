@@ -35,27 +35,35 @@ std::vector<std::string> SplitItems(const std::string& text) {
   return items;
 }
 
-// A directory's FCLIB files, sorted by name so that the records come in the same order on
+// A file a directory of a set contributes: an FCLIB file or a JSON problem file (a Gmsh mesh
+// is no problem file; the JSON file that names it is).
+bool IsSetFile(const fs::path& path) {
+  return io::IsFclibPath(path.string()) || path.extension() == ".json";
+}
+
+// A directory's problem files, sorted by name so that the records come in the same order on
 // every machine.
-std::vector<std::string> FclibFilesIn(const std::string& dir) {
+std::vector<std::string> ProblemFilesIn(const std::string& dir) {
   std::vector<std::string> files;
   for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_regular_file() && io::IsFclibPath(entry.path().string())) {
-      files.push_back(entry.path().string());
-    }
+    if (entry.is_regular_file() && IsSetFile(entry.path())) files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
   if (files.empty()) {
-    throw InputError("--problem-dir: '" + dir + "' holds no FCLIB file (.hdf5, .h5)");
+    throw InputError("--problem-dir: '" + dir +
+                     "' holds no problem file (FCLIB .hdf5, .h5, or JSON .json)");
   }
   return files;
 }
 
-// The run's arguments for one file of the set: --problem-file F with the set's --set.
+// The run's arguments for one file of the set: --problem-file F with the set's --set, but for
+// `friction`, which only FCLIB files have (a set may mix frictional FCLIB files, which need
+// friction=ignore, with JSON files, which would refuse the unknown setting).
 RunArguments FileArguments(const RunArguments& a, const std::string& file) {
   RunArguments one = a;
   one.problem_dir.clear();
   one.problem_file = file;
+  if (!io::IsFclibPath(file)) one.settings.erase("friction");
   return one;
 }
 
@@ -131,7 +139,7 @@ bool SolveOne(const std::string& file, const Problem& problem, Formulation& form
   const std::string table_name = problem.name + " " + formulation.name();
   std::string why;
   if (!formulation.Accepts(step, &why)) {
-    out->rows.Write({label, file, problem, nullptr, std::nan(""), why, a.time_limit, a.tolerance});
+    out->rows.Write({label, file, &problem, nullptr, std::nan(""), why, a.time_limit, a.tolerance});
     out->table.push_back({table_name, start.label, "skipped", {}, {}});
     return true;
   }
@@ -142,7 +150,7 @@ bool SolveOne(const std::string& file, const Problem& problem, Formulation& form
   if (s.status == Status::kStoppedByCaller) return false;
   if (!observer.last) throw std::logic_error("a fixed-load solve without an attempt");
   const StepAttempt& attempt = *observer.last;
-  out->rows.Write({label, file, problem, &attempt, NaturalMapError(step, attempt.result.point),
+  out->rows.Write({label, file, &problem, &attempt, NaturalMapError(step, attempt.result.point),
                    attempt.result.message, a.time_limit, a.tolerance});
   out->table.push_back({table_name, start.label, std::to_string(recorder.accepted()) + "/1",
                         recorder.iterations(), recorder.solve_times_s(), recorder.fastest_solve_s(),
@@ -161,29 +169,61 @@ std::vector<std::unique_ptr<Formulation>> MakeFormulations(const RunArguments& a
   return formulations;
 }
 
-// Every file loaded once before any work, its guesses too, so that a bad one is refused (exit
-// 2) with nothing run; the notes of each go to run.json, prefixed with its problem's name.
-void CheckFiles(const RunArguments& a, const std::vector<std::string>& files, RunJson* record) {
+// Every file loaded once before any work, its guesses too: why each cannot be read ("" when it
+// can), so that a bad file is a row of problems.csv and not the end of the set. A second
+// problem of the same name cannot be read either (the records tell problems apart by name).
+// The notes of each go to run.json, prefixed with its problem's name. Throws InputError when no
+// file can be read: nothing would be run.
+std::vector<std::string> CheckFiles(const RunArguments& a, const std::vector<std::string>& files,
+                                    RunJson* record) {
+  std::vector<std::string> reasons;
   std::set<std::string> names;
   for (const auto& file : files) {
-    const Problem problem = LoadSetProblem(a, file);
-    if (!names.insert(problem.name).second) {
-      throw InputError("--problem-dir: two problems named '" + problem.name +
-                       "' (the records tell problems apart by name)");
+    try {
+      const Problem problem = LoadSetProblem(a, file);
+      StartsOf(file, problem);
+      if (!names.insert(problem.name).second) {
+        throw InputError("a second problem named '" + problem.name +
+                         "' (the records tell problems apart by name)");
+      }
+      for (const auto& note : problem.notes)
+        record->problem_notes.push_back(problem.name + ": " + note);
+      reasons.emplace_back();
+    } catch (const std::invalid_argument& e) {  // io::InputError: the file's own refusal
+      reasons.emplace_back(e.what());
+    } catch (const InputError& e) {  // LoadProblem's, with a --set suggestion
+      reasons.emplace_back(e.what());
     }
-    StartsOf(file, problem);
-    for (const auto& note : problem.notes)
-      record->problem_notes.push_back(problem.name + ": " + note);
   }
+  if (std::all_of(reasons.begin(), reasons.end(), [](const auto& r) { return !r.empty(); })) {
+    throw InputError(files.size() == 1 ? reasons.front()
+                                       : "--problem-dir: no file could be read; " + files.front() +
+                                             ": " + reasons.front());
+  }
+  return reasons;
+}
+
+// A file that could not be read: one row, named by the file's stem, with the reason.
+void WriteUnreadable(const std::string& file, const std::string& reason, SetOutput* out) {
+  const RunLabel label{fs::path(file).stem().string(), "", "", "", "", "set"};
+  out->rows.Write(
+      {label, file, nullptr, nullptr, std::nan(""), reason, out->a.time_limit, out->a.tolerance});
+  out->table.push_back({fs::path(file).filename().string(), "-", "unreadable", {}, {}});
 }
 
 int RunSet(const RunArguments& a, const std::vector<std::string>& files,
+           const std::vector<std::string>& unreadable,
            const std::vector<std::unique_ptr<Formulation>>& formulations,
            const RecordTarget& target, RunJson* record, std::string* reason) {
   SetOutput out{
       a, RecordFiles(target), RecordWriter<ProblemSetRow>(target, ProblemSetSchema()), {}, record};
   const Activity comparing("solving the problem set");
-  for (const auto& file : files) {
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const std::string& file = files[f];
+    if (!unreadable[f].empty()) {
+      WriteUnreadable(file, unreadable[f], &out);
+      continue;
+    }
     const Problem problem = LoadSetProblem(a, file);
     for (const SetStart& start : StartsOf(file, problem)) {
       for (const auto& formulation : formulations) {
@@ -195,7 +235,13 @@ int RunSet(const RunArguments& a, const std::vector<std::string>& files,
       }
     }
   }
+  const auto unread = std::count_if(unreadable.begin(), unreadable.end(),
+                                    [](const std::string& r) { return !r.empty(); });
   *reason = "every formulation was run on every problem (problems.csv holds each outcome)";
+  if (unread > 0) {
+    *reason += "; " + std::to_string(unread) + " of " + std::to_string(files.size()) +
+               " files could not be read (status unreadable)";
+  }
   std::fprintf(stderr, "%scompare: records in %s\n", CompareTable(out.table).c_str(),
                target.memory != nullptr ? "memory" : target.directory.c_str());
   return kExitOk;
@@ -208,7 +254,7 @@ std::vector<std::string> ProblemSetFiles(const std::string& items) {
   for (const auto& item : SplitItems(items)) {
     std::error_code ec;
     if (fs::is_directory(item, ec)) {
-      for (auto& file : FclibFilesIn(item)) files.push_back(std::move(file));
+      for (auto& file : ProblemFilesIn(item)) files.push_back(std::move(file));
     } else if (fs::is_regular_file(item, ec)) {
       files.push_back(item);
     } else {
@@ -229,7 +275,7 @@ int ProblemSetCommand(const RunArguments& a, RunJson* record, RecordTexts* memor
   const std::vector<std::string> files = ProblemSetFiles(a.problem_dir);
   if (Distributed()) throw UsageError("compare: runs in one process only (not mpirun)");
   const auto formulations = MakeFormulations(a);
-  CheckFiles(a, files, record);
+  const std::vector<std::string> unreadable = CheckFiles(a, files, record);
   record->problem = fs::path(files.front()).parent_path().filename().string();
   record->problem_source = "--problem-dir " + a.problem_dir;
   record->settings = a.settings;
@@ -240,7 +286,7 @@ int ProblemSetCommand(const RunArguments& a, RunJson* record, RecordTexts* memor
   record->mode = "set";
   record->repeat = a.repeat;
   return WithRecords(a, record, memory, [&](const RecordTarget& target, std::string* reason) {
-    return RunSet(a, files, formulations, target, record, reason);
+    return RunSet(a, files, unreadable, formulations, target, record, reason);
   });
 }
 

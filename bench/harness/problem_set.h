@@ -1,10 +1,10 @@
 // `contactbench compare --problem-dir`: a problem set, the way the FCLIB literature compares
 // solvers (Acary, Bremond & Huber, INRIA RR-9118): every formulation on every problem of a
 // collection, each a single fixed-load solve, cold and from each of the file's guesses; one row
-// per problem x formulation x start in problems.csv, with the verdict's status, the iterations,
-// the time (median, min and max of --repeat N solves) and the FCLIB error of the answer
-// (docs/comparison.md, "Problem sets"). The solves' attempts and iterations also go to
-// steps.csv and iterations.csv, labelled with their problem.
+// per problem x formulation x start in problems.csv (and one per file that cannot be read),
+// with the verdict's status, the iterations, the time (median, min and max of --repeat N
+// solves) and the FCLIB error of the answer (docs/comparison.md, "Problem sets"). The solves'
+// attempts and iterations also go to steps.csv and iterations.csv, labelled with their problem.
 #pragma once
 
 #include <optional>
@@ -17,8 +17,9 @@
 namespace cb::harness {
 
 // The problem files --problem-dir names: each comma-separated item a directory (its FCLIB
-// files, .hdf5 and .h5, sorted by name) or a file. Throws InputError for an item that is
-// neither, a directory without FCLIB files, or a file named twice.
+// files, .hdf5 and .h5, and its JSON problem files, .json, sorted by name) or a file. Throws
+// InputError for an item that is neither, a directory without such files, or a file named
+// twice. (A file that is named but cannot be read is a row of problems.csv, not a refusal.)
 std::vector<std::string> ProblemSetFiles(const std::string& items);
 
 // compare --problem-dir (CompareCommand passes it on): the exit status of cli.h.

@@ -209,6 +209,13 @@ const RecordSchema<AttemptRow>& StepsSchema() {
           CompResColumn<D>(),
           FeasResColumn<D>(),
           StepResColumn<D>(),
+          {"fclib_error",
+           "the FCLIB literature's error of the state the attempt reached, as an answer of the "
+           "fixed-load problem at its lambda: natural-map residual relative to the data, as "
+           "`fclib_error` of `problems.csv` (`src/verdict/natural_map_error.h`), for a problem "
+           "read from an FCLIB file and an LCP; nan for every other problem (on a linear body it "
+           "would cost a factorisation of K per step)",
+           [](const D& d) -> Cell { return d.fclib_error; }},
           {"n_contact", "pairs in contact at the state the attempt reached",
            [](const D& d) -> Cell { return d.record.n_contact; }},
           {"kink", "kinks located between the previous accepted step and this one",
@@ -487,6 +494,7 @@ Cell OfAttempt(const ProblemSetRow& d, Value (*value)(const StepAttempt&), const
 }
 
 std::string_view ProblemSetStatus(const ProblemSetRow& d) {
+  if (d.problem == nullptr) return "unreadable";
   if (d.attempt == nullptr) return "skipped";
   return d.attempt->accepted ? "verified" : "failed";
 }
@@ -510,12 +518,15 @@ const RecordSchema<ProblemSetRow>& ProblemSetSchema() {
           SolverColumn<D>(),
           StartColumn<D>(),
           SettingsColumn<D>(),
-          {"d", "unknowns of the body (of an LCP: its size)",
-           [](const D& d) -> Cell { return d.problem.model->num_dofs(); }},
-          {"nc", "contact pairs", [](const D& d) -> Cell { return d.problem.model->num_pairs(); }},
+          {"d", "unknowns of the body (of an LCP: its size; 0 when unreadable)",
+           [](const D& d) -> Cell { return d.problem ? d.problem->model->num_dofs() : 0; }},
+          {"nc", "contact pairs (0 when unreadable)",
+           [](const D& d) -> Cell { return d.problem ? d.problem->model->num_pairs() : 0; }},
           {"status",
-           "verified (the verdict verified the answer at `tolerance`), failed, or skipped (the "
-           "formulation refused the problem; `message` says why)",
+           "verified (the verdict verified the answer at `tolerance`), failed, skipped (the "
+           "formulation refused the problem; `message` says why), or unreadable (the file is no "
+           "fixed-load problem the suite reads: one row for the file, with no formulation or "
+           "start, `message` says why)",
            [](const D& d) -> Cell { return ProblemSetStatus(d); }},
           {"found", "what the solver claims (as `found` in `steps.csv`; empty when skipped)",
            [](const D& d) -> Cell {
@@ -564,14 +575,16 @@ const RecordSchema<ProblemSetRow>& ProblemSetSchema() {
            }},
           {"fclib_error",
            "the FCLIB literature's error of the answer: natural-map residual relative to the "
-           "data (`src/verdict/natural_map_error.h`; nan for a nonlinear problem or when "
-           "skipped)",
+           "data (`src/verdict/natural_map_error.h`; nan for a nonlinear problem, or when "
+           "skipped or unreadable)",
            [](const D& d) -> Cell { return d.fclib_error; }},
           {"time_limit_s", "the time limit per solve, seconds (`--time-limit`; 0: none)",
            [](const D& d) -> Cell { return d.time_limit_s; }},
           {"tolerance", "the verdict's tolerance (`--tol`)",
            [](const D& d) -> Cell { return d.tolerance; }},
-          {"message", "the solver's message, or why the formulation refused the problem",
+          {"message",
+           "the solver's message, why the formulation refused the problem, or why the file "
+           "could not be read",
            [](const D& d) -> Cell { return d.message; }},
       }};
   return schema;

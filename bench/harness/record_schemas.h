@@ -31,7 +31,14 @@ struct PathRow {
   const Problem& problem;
   const Record& record;
 };
-using AttemptRow = PathRow<StepAttempt>;
+// A step attempt, with the FCLIB error of the state it reached (natural_map_error.h; NaN
+// where it is not defined).
+struct AttemptRow {
+  const RunLabel& label;
+  const Problem& problem;
+  const StepAttempt& record;
+  double fclib_error = 0.0;
+};
 using KinkRow = PathRow<KinkRecord>;
 using CriticalRow = PathRow<CriticalPointRecord>;
 
@@ -101,12 +108,13 @@ struct RunOutcomeRow {
 };
 
 // One formulation x start on one problem of a problem set (`compare --problem-dir`): the
-// fixed-load solve's attempt, or none when the formulation refused the problem.
+// fixed-load solve's attempt, or none when the formulation refused the problem; or a file of
+// the set that could not be read (no problem, no attempt, `message` says why).
 struct ProblemSetRow {
   const RunLabel& label;
-  std::string_view source;  // the problem file
-  const Problem& problem;
-  const StepAttempt* attempt = nullptr;  // nullptr: skipped
+  std::string_view source;               // the problem file
+  const Problem* problem = nullptr;      // nullptr: the file could not be read
+  const StepAttempt* attempt = nullptr;  // nullptr: skipped (or unreadable)
   double fclib_error = 0.0;              // natural_map_error.h (NaN: not defined)
   std::string_view message;              // the solve's message, or why it was skipped
   double time_limit_s = 0.0;

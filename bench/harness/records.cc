@@ -1,9 +1,11 @@
 #include "harness/records.h"
 
 #include <cstdio>
+#include <limits>
 
 #include "harness/interrupt.h"
 #include "model/complementarity_model.h"
+#include "verdict/natural_map_error.h"
 
 namespace cb::harness {
 
@@ -16,6 +18,12 @@ RecordFiles::RecordFiles(const RecordTarget& target)
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
     : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {}
+
+double RunRecorder::StepFclibError(const State& state) const {
+  const bool lcp = dynamic_cast<const ComplementarityModel*>(problem_.model.get()) != nullptr;
+  if (!problem_.from_fclib && !lcp) return std::numeric_limits<double>::quiet_NaN();
+  return NaturalMapError(*problem_.model, state);
+}
 
 void RunRecorder::OnAttempt(const StepAttempt& a) {
   ++attempts_;
@@ -32,7 +40,7 @@ void RunRecorder::OnAttempt(const StepAttempt& a) {
     }
     ++repeat_disagreements_;
   }
-  files_->steps().Write({label_, problem_, a});
+  files_->steps().Write({label_, problem_, a, StepFclibError(a.state)});
   for (const IterationRecord& it : a.result.history) files_->iterations().Write({label_, a, it});
   ShowProgress(a);
 }

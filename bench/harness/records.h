@@ -65,6 +65,9 @@ class RunRecorder final : public PathObserver {
 
  private:
   void ShowProgress(const StepAttempt& attempt);
+  // steps.csv's fclib_error of a state: for a problem read from an FCLIB file and an LCP,
+  // NaN otherwise (Problem::from_fclib).
+  double StepFclibError(const State& state) const;
 
   RecordFiles* files_;
   const Problem& problem_;

@@ -157,8 +157,21 @@ def _opening(name, rows, run):
     return out + [""]
 
 
-def set_section(name, rows, run, figures_dir):
-    out = _opening(name, rows, run)
+def _unreadable(rows):
+    """The files of the set that could not be read (status unreadable), with the reasons."""
+    bad = rows[rows["status"] == "unreadable"]
+    if bad.empty:
+        return []
+    out = [f"{len(bad)} file(s) of the set could not be read and were not solved "
+           "(`problems.csv` status `unreadable`):", ""]
+    for _, r in bad.iterrows():
+        out.append(f"- `{os.path.basename(str(r['source']))}`: {r['message']}")
+    return out + [""]
+
+
+def set_section(name, all_rows, run, figures_dir):
+    rows = all_rows[all_rows["status"] != "unreadable"]
+    out = _opening(name, rows, run) + _unreadable(all_rows)
     table = summary_table(rows)
     out += ["Per formulation and start (`guess`: the solves from all the files' guesses): "
             "solves verified by the verdict of those it took, and the problems it refused; "

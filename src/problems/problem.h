@@ -37,6 +37,10 @@ struct Problem {
   // What reading the problem changed in it, one sentence each (an FCLIB file's friction
   // dropped, its M symmetrised); run.json records them. Empty for a problem read as written.
   std::vector<std::string> notes;
+  // Read from an FCLIB file: each step's record carries the FCLIB error (steps.csv's
+  // fclib_error) to set beside published figures. Other problems leave it NaN there, but an
+  // LCP's (no factorisation): on a linear body it costs a factorisation of K per step.
+  bool from_fclib = false;
   // A problem file's own names, which the records use: each node's id (a Gmsh node's tag) and
   // each obstacle's id, by the model's 0-based index. Empty for a named problem, whose
   // records number nodes and obstacles from 0.

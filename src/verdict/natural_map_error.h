@@ -15,12 +15,18 @@
 // Siconos the local error is absolute when ||q|| is below the machine epsilon.
 #pragma once
 
+#include "model/contact_model.h"
 #include "step/step_problem.h"
 
 namespace cb {
 
-// The FCLIB error of `point` as an answer of the fixed-load `step`. NaN when the model is not
-// linear (there is no FCLIB problem of it) or K cannot be factorised.
+// The FCLIB error of `state` (u, r at load lambda) as an answer of `model`'s fixed-load
+// problem at lambda. NaN when the model is not linear (there is no FCLIB problem of it) or K
+// cannot be factorised or is singular to working precision (a body held by its contacts
+// alone, P1 `block`: K^{-1} e would be rounding amplified).
+double NaturalMapError(const ContactModel& model, const State& state);
+
+// The same of `point` as an answer of the fixed-load `step`: of the state base + point.
 double NaturalMapError(const StepProblem& step, const StepPoint& point);
 
 }  // namespace cb

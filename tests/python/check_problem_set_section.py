@@ -7,7 +7,9 @@ which refuses a non-symmetric problem) into a scratch results directory, runs re
 on it and checks that the section states what problems.csv says and nothing else: one table
 row per formulation and start kind with its verified and refused counts, medians and largest
 FCLIB error recomputed here from the records; the problems listed are those of the records;
-the profile figure is a PNG. Exit status 77 (skipped) when the build reads no FCLIB files.
+the profile figure is a PNG. A second set (a listed FCLIB file, a JSON LCP and a file that is
+no problem file) checks that an unreadable file is listed with its reason and left out of the
+tables. Exit status 77 (skipped) when the build reads no FCLIB files.
 """
 import os
 import re
@@ -39,6 +41,12 @@ FORMULATIONS = "active-set,implicit-fb,ipopt-energy," + (
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
+def set_text(report, name):
+    """The section of set `name`, up to the next heading."""
+    section = report[report.index(f"### Problem set `{name}`"):]
+    return re.split(r"^##", section[3:], maxsplit=1, flags=re.M)[0]
+
+
 def table_rows(markdown, heading):
     """The rows (lists of cells) of the first table after `heading`."""
     lines = markdown[markdown.index(heading):].splitlines()
@@ -60,6 +68,16 @@ class ProblemSetSection(unittest.TestCase):
                         os.path.join(ROOT, "tests", "data", "fclib"), "--set",
                         "friction=ignore", "--formulations", FORMULATIONS, "--repeat", "2",
                         "--time-limit", "5", "--out", cls.set_dir],
+                       check=True, stderr=subprocess.DEVNULL)
+        # A second set: a listed FCLIB file, a JSON LCP and a file that is no problem file.
+        cls.broken = os.path.join(cls.tmp, "broken.json")
+        with open(cls.broken, "w") as f:
+            f.write("{ not json")
+        cls.mixed_dir = os.path.join(cls.tmp, "compare", "mixed")
+        listed = ",".join([os.path.join(ROOT, "tests", "data", "fclib", "CubeH8.hdf5"),
+                           os.path.join(ROOT, "examples", "lcp-dense-2x2.json"), cls.broken])
+        subprocess.run([BINARY, "compare", "--problem-dir", listed, "--set", "friction=ignore",
+                        "--formulations", "active-set", "--out", cls.mixed_dir],
                        check=True, stderr=subprocess.DEVNULL)
         subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "results", "plot.py"), cls.tmp],
                        check=True, stderr=subprocess.DEVNULL)
@@ -97,7 +115,7 @@ class ProblemSetSection(unittest.TestCase):
             self.assertEqual(error_max, comparison.fmt(solved["fclib_error"].max()), cells)
 
     def test_problems_listed_are_those_of_the_records(self):
-        section = self.report[self.report.index("### Problem set `fclib`"):]
+        section = set_text(self.report, "fclib")
         listed = re.findall(r"^\| (\S+) \| (\d+) \| (\d+) \|", section, re.M)
         expected = self.rows.drop_duplicates("problem")
         self.assertEqual([(p, int(d), int(nc)) for p, d, nc in listed],
@@ -108,6 +126,21 @@ class ProblemSetSection(unittest.TestCase):
         self.assertIn(f"(figures/comparison/{name})", self.report)
         with open(os.path.join(self.tmp, "figures", "comparison", name), "rb") as f:
             self.assertEqual(f.read(8), PNG)
+
+    def test_unreadable_files_are_listed_and_left_out(self):
+        mixed = pd.read_csv(os.path.join(self.mixed_dir, "problems.csv"))
+        bad = mixed[mixed["status"] == "unreadable"]
+        self.assertEqual(list(bad["source"]), [self.broken])
+        section = set_text(self.report, "mixed")
+        line = next(x for x in section.splitlines() if x.startswith("- `broken.json`: "))
+        self.assertEqual(line, f"- `broken.json`: {bad['message'].iloc[0]}")
+        listed = re.findall(r"^\| (\S+) \| (\d+) \| (\d+) \|", section, re.M)
+        read = mixed[mixed["status"] != "unreadable"]["problem"]
+        self.assertEqual([p for p, _, _ in listed], list(dict.fromkeys(read)))
+        rows = table_rows(self.report, "### Problem set `mixed`")
+        self.assertEqual([(r[0], r[1], r[2]) for r in rows],
+                         [("active-set", "cold",
+                           f"{(mixed['status'] == 'verified').sum()}/{len(read)}")])
 
     def test_friction_drop_is_said(self):
         self.assertIn("Friction was dropped (mu set to 0) in 5 of 5 problems", self.report)

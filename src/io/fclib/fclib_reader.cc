@@ -192,6 +192,7 @@ Problem ReadLocal(const Hdf5File& file, const Layout& layout,
   problem.parameters = ApplyFclibSettings(file.name(), length, force, settings);
   DropFriction(file, root + "/vectors/mu", mu, problem.parameters, &problem.notes);
   problem.model = std::move(model);
+  problem.from_fclib = true;
   problem.load = 0.0;  // an LCP: (29) at lambda = 0 is w = W_NN z + q_N = -r
   problem.units = "none";
   problem.description =
@@ -232,6 +233,7 @@ Problem ReadGlobal(const Hdf5File& file, const Layout& layout,
   problem.notes = std::move(notes);
   DropFriction(file, root + "/vectors/mu", mu, problem.parameters, &problem.notes);
   problem.model = std::move(model);
+  problem.from_fclib = true;
   problem.load = 1.0;  // M v = H r + f: the load f once
   problem.units = "the file's units";
   problem.description = "FCLIB global problem: linear body, n = " + std::to_string(m.rows()) +
