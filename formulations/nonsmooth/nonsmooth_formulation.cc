@@ -114,8 +114,8 @@ SolverSummary RunRestart(const StepProblem& step, const StartPoint& start,
   const SolveCounts first = result->counts;
   const std::string first_message = result->message;
   track->Restart(*x);
-  const SolverSummary summary = RunStepEquationSolver(solver, system, x, controls, result,
-                                                      [track](const Vec& y) { track->Observe(y); });
+  SolverSummary summary = RunStepEquationSolver(solver, system, x, controls, result,
+                                                [track](const Vec& y) { track->Observe(y); });
   result->counts.iterations += first.iterations;
   result->counts.residual_evals += first.residual_evals;
   result->counts.jacobian_evals += first.jacobian_evals;
