@@ -4,6 +4,7 @@
 // machine's memory and the option that lifts the bound (issue 30).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -23,7 +24,10 @@ struct Outcome {
 // `contactbench run ARGUMENTS --out DIR` with CONTACTBENCH_MEMORY_LIMIT=`limit` ("" for the
 // machine's own), ended after 60 s: a run that starts building instead of refusing fails.
 Outcome RunWithLimit(const std::string& limit, const std::string& arguments) {
-  const auto dir = std::filesystem::temp_directory_path() / "contactbench_memory_estimate";
+  // Each test (ctest runs them in parallel) and each process its own --out.
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("contactbench_memory_estimate_" + test + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   const std::string command = "timeout -s KILL 60 env " +
                               (limit.empty() ? "" : "CONTACTBENCH_MEMORY_LIMIT=" + limit + " ") +
