@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages of scripts/packages.txt that a job needs and that are not
 # installed yet: the untagged lines and those tagged with JOB.
-# Usage: scripts/install_packages.sh JOB   (build, sanitize, static or format)
+# Usage: scripts/install_packages.sh JOB   (build, sanitize, static, format or scale)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-jobs=(build sanitize static format)
+jobs=(build sanitize static format scale)
 job="${1:-}"
 if [[ " ${jobs[*]} " != *" $job "* ]]; then
   echo "install_packages: usage: $0 JOB (one of: ${jobs[*]})" >&2
