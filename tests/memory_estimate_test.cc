@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "harness/memory_budget.h"
 #include "source_tree.h"
 
 namespace {
@@ -109,7 +110,9 @@ TEST(MemoryEstimateTest, AnIntegerSizeIsDigits) {
 }
 
 #ifdef CONTACTBENCH_HAVE_PETSC
-// An iterative solve (dist-*'s linear=amg) has no factor: its estimate has no fill.
+// An iterative solve (dist-*'s linear=amg) has no factor: its estimate has no fill, but its
+// own, larger, term per unknown (checked against measured peaks by
+// memory_estimate_iterative_test.cc): in 3-D at n = 40 it is no smaller than the direct one's.
 TEST(MemoryEstimateTest, TheLinearSolverChosenCountsItsFill) {
   const std::string problem = "--problem hertz-3d --set n=40 --set nz=40 ";
   const Outcome direct = RunWithLimit("1", problem + "--formulation dist-implicit-fb");
@@ -119,7 +122,10 @@ TEST(MemoryEstimateTest, TheLinearSolverChosenCountsItsFill) {
   ASSERT_EQ(amg.status, 2) << amg.output;
   EXPECT_NE(direct.output.find("fill"), std::string::npos) << direct.output;
   EXPECT_EQ(amg.output.find("fill"), std::string::npos) << amg.output;
-  EXPECT_LT(EstimatedGib(amg.output), 0.5 * EstimatedGib(direct.output)) << amg.output;
+  const double dofs = 3.0 * 41.0 * 41.0 * 41.0;
+  EXPECT_GE(EstimatedGib(amg.output) * 1024.0 * 1024.0 * 1024.0,
+            dofs * cb::harness::kBytesPerUnknownIterative3d)
+      << amg.output;
 }
 #endif
 

@@ -83,10 +83,13 @@ void PrepareOutput(const std::string& dir) {
 
 namespace {
 
-// Whether the run factorises directly: every formulation but a dist-* one given `linear=amg`
-// (compare's formulations are taken as direct, the larger estimate).
+// Whether the run factorises directly: every formulation but a distributed one given
+// `linear=amg` (compare's formulations are taken as direct, the larger estimate).
 bool FactorisesDirectly(const RunArguments& a) {
-  if (a.formulation.rfind("dist-", 0) != 0) return true;
+  const auto& formulations = FormulationRegistry();
+  const auto info = std::find_if(formulations.begin(), formulations.end(),
+                                 [&](const FormulationInfo& f) { return f.name == a.formulation; });
+  if (info == formulations.end() || !info->distributed) return true;
   for (const std::string& owner : {std::string(), a.formulation}) {
     const auto options = a.options.find(owner);
     if (options == a.options.end()) continue;
@@ -102,7 +105,11 @@ bool FactorisesDirectly(const RunArguments& a) {
 MemoryEstimate EstimateOf(const RunArguments& a, double dofs, double pairs, int dim,
                           double separator_nodes) {
   MemoryEstimate estimate{dofs, pairs, std::min(dofs, dim * pairs)};
-  if (dim == 3 && FactorisesDirectly(a)) estimate.fill = DirectFill3d(dofs, separator_nodes);
+  if (!FactorisesDirectly(a)) {
+    estimate.bytes_per_unknown = dim == 3 ? kBytesPerUnknownIterative3d : kBytesPerUnknownIterative;
+  } else if (dim == 3) {
+    estimate.fill = DirectFill3d(dofs, separator_nodes);
+  }
   estimate.processes = LaunchedProcesses();
   return estimate;
 }

@@ -66,7 +66,7 @@ thread_local const char* g_activity = nullptr;
 }  // namespace
 
 double MemoryEstimate::bytes() const {
-  const double work = kBytesPerUnknown * dofs +
+  const double work = bytes_per_unknown * dofs +
                       kBytesPerContactDofSquared * contact_dofs * contact_dofs +
                       kBytesPerFill * fill;
   return processes * kBaseBytes + (1.0 + kExtraPerProcess * (processes - 1.0)) * work;
@@ -79,7 +79,7 @@ std::string MemoryEstimate::Describe() const {
     text << processes << " processes x " << kBaseBytes / (1024.0 * 1024.0) << " MiB + "
          << 1.0 + kExtraPerProcess * (processes - 1.0) << " x (";
   }
-  text << static_cast<long long>(dofs) << " unknowns x " << kBytesPerUnknown / 1024.0 << " KiB + "
+  text << static_cast<long long>(dofs) << " unknowns x " << bytes_per_unknown / 1024.0 << " KiB + "
        << static_cast<long long>(contact_dofs) << " contact dofs squared x "
        << kBytesPerContactDofSquared << " B";
   if (fill > 0.0) {

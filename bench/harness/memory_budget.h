@@ -21,15 +21,22 @@ namespace cb::harness {
 struct MemoryEstimate {
   double dofs = 0.0;
   double pairs = 0.0;
-  double contact_dofs = 0.0;  // the dofs the pairs act on (at most dofs)
-  double fill = 0.0;          // dofs x sqrt(s) of a direct factor in 3-D; 0 otherwise
-  double processes = 1.0;     // of a distributed run
+  double contact_dofs = 0.0;                // the dofs the pairs act on (at most dofs)
+  double fill = 0.0;                        // dofs x sqrt(s) of a direct factor in 3-D; 0 otherwise
+  double processes = 1.0;                   // of a distributed run
+  double bytes_per_unknown = 3.5 * 1024.0;  // kBytesPerUnknown, or an iterative solve's below
   double bytes() const;
   std::string Describe() const;  // "2.1 GiB (181202 unknowns x 3.5 KiB + ...)"
 };
 // Bytes per unknown, per contact dof squared and per unit of fill of MemoryEstimate::bytes()
 // (measured on P1 and on hertz-3d: docs/hardening.md, "Memory").
 constexpr double kBytesPerUnknown = 3.5 * 1024.0;
+// A distributed iterative solve (linear=amg) holds no factor but the Jacobian twice more (its
+// node-blocked copy for GAMG and the augmented split's product), GAMG's hierarchy and FGMRES's
+// 2 x 100 restart vectors: more per unknown than a direct solve's non-fill part, and in 3-D
+// about four times the 2-D figure (81 entries a row against 18).
+constexpr double kBytesPerUnknownIterative = 6.0 * 1024.0;
+constexpr double kBytesPerUnknownIterative3d = 18.0 * 1024.0;
 constexpr double kBytesPerContactDofSquared = 4.0 * 8.0;
 constexpr double kBytesPerFill = 420.0;
 constexpr double kBaseBytes = 64.0 * 1024.0 * 1024.0;
