@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/huge_pages.h"
+
 namespace cb {
 
 namespace {
@@ -27,11 +29,20 @@ std::pair<std::vector<int>, std::vector<int>> EntriesByColumn(
   }
   for (int j = 0; j < cols; ++j) start[j + 1] += start[j];
   std::vector<int> next(start.begin(), start.end() - 1);
-  std::vector<int> numbers(entries.size());
+  std::vector<int> numbers;
+  ReserveOnHugePages(&numbers, entries.size());
+  numbers.resize(entries.size());
   for (std::size_t k = 0; k < entries.size(); ++k) {
     numbers[next[entries[k].second]++] = static_cast<int>(k);
   }
   return {std::move(start), std::move(numbers)};
+}
+
+// Huge pages for a compressed matrix's index and value arrays, before they are written.
+void AdviseStorage(SpMat* m) {
+  const auto nnz = static_cast<std::size_t>(m->nonZeros());
+  AdviseHugePages(m->innerIndexPtr(), sizeof(int) * nnz);
+  AdviseHugePages(m->valuePtr(), sizeof(double) * nnz);
 }
 
 }  // namespace
@@ -59,10 +70,12 @@ ScatterPattern::ScatterPattern(int rows, int cols, const std::vector<Entry>& ent
     outer[j + 1] = outer[j] + distinct;
   }
   pattern_.resizeNonZeros(outer[cols]);
+  AdviseStorage(&pattern_);
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + outer[cols], 0.0);
   int* inner = pattern_.innerIndexPtr();
   std::fill(seen_in.begin(), seen_in.end(), -1);
   std::vector<int> place(rows, 0);  // a row's slot in the current column
+  ReserveOnHugePages(&slots_, entries.size());
   slots_.resize(entries.size());
   for (int j = 0; j < cols; ++j) {
     int end = outer[j];
@@ -92,7 +105,14 @@ void ScatterPattern::Reset(SpMat* m) const {
       // for zero bytes; UBSan.)
       (pattern_.nonZeros() == 0 || std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
                                                sizeof(int) * pattern_.nonZeros()) == 0);
-  if (!same) *m = pattern_;
+  if (!same) {
+    // A copy of the pattern, its new storage advised before the copy touches it.
+    m->resize(pattern_.rows(), pattern_.cols());
+    m->resizeNonZeros(pattern_.nonZeros());
+    AdviseStorage(m);
+    std::copy_n(pattern_.outerIndexPtr(), pattern_.outerSize() + 1, m->outerIndexPtr());
+    std::copy_n(pattern_.innerIndexPtr(), pattern_.nonZeros(), m->innerIndexPtr());
+  }
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
 }
 

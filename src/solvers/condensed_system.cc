@@ -9,6 +9,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/huge_pages.h"
+
 namespace cb {
 namespace {
 
@@ -30,7 +32,13 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
   blocks_ = std::move(blocks);
   const int d = blocks_.num_dofs, nc = blocks_.num_pairs;
   // Kc = A (lower) + the pair springs G_p^T w_p G_p (lower).
+  std::size_t num_entries = blocks_.stiffness_lower.size();
+  for (int p = 0; p < nc; ++p) {
+    const std::size_t k = blocks_.pair_begin[p + 1] - blocks_.pair_begin[p];
+    num_entries += k * (k + 1) / 2;
+  }
   std::vector<ScatterPattern::Entry> kc_entries;
+  ReserveOnHugePages(&kc_entries, num_entries);  // filled once, without regrowing
   for (const JacobianBlocks::Entry& a : blocks_.stiffness_lower)
     kc_entries.emplace_back(a.row, a.col);
   for (int p = 0; p < nc; ++p) {
