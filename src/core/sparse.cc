@@ -105,15 +105,22 @@ void ScatterPattern::Reset(SpMat* m) const {
       // for zero bytes; UBSan.)
       (pattern_.nonZeros() == 0 || std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
                                                sizeof(int) * pattern_.nonZeros()) == 0);
-  if (!same) {
-    // A copy of the pattern, its new storage advised before the copy touches it.
-    m->resize(pattern_.rows(), pattern_.cols());
-    m->resizeNonZeros(pattern_.nonZeros());
-    AdviseStorage(m);
-    std::copy_n(pattern_.outerIndexPtr(), pattern_.outerSize() + 1, m->outerIndexPtr());
-    std::copy_n(pattern_.innerIndexPtr(), pattern_.nonZeros(), m->innerIndexPtr());
-  }
+  if (!same) CopyOnHugePages(pattern_, m);
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
+}
+
+void CopyOnHugePages(const SpMat& from, SpMat* to) {
+  if (!from.isCompressed()) {
+    *to = from;
+    to->makeCompressed();
+    return;
+  }
+  to->resize(from.rows(), from.cols());
+  to->resizeNonZeros(from.nonZeros());
+  AdviseStorage(to);
+  std::copy_n(from.outerIndexPtr(), from.outerSize() + 1, to->outerIndexPtr());
+  std::copy_n(from.innerIndexPtr(), from.nonZeros(), to->innerIndexPtr());
+  std::copy_n(from.valuePtr(), from.nonZeros(), to->valuePtr());
 }
 
 void AppendBlockEntries(const SpMat& block, int row_offset, int col_offset, bool transpose,

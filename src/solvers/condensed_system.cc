@@ -49,13 +49,12 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
     }
   }
   const ScatterPattern kc(d, d, kc_entries);
-  const SpMat& pattern = kc.pattern();
-  const bool same_kc = kc_pattern_.rows() == d && SamePattern(pattern, kc_pattern_);
-  kc_ = pattern;
+  // kc_ keeps the pattern it was given (only its values change): the pattern of the analyses.
+  const bool same_kc = kc_.rows() == d && SamePattern(kc.pattern(), kc_);
+  kc.Reset(&kc_);  // copied (onto huge pages) only when the pattern is new
   kc_slots_ = kc.slots();
   if (!same_kc) {
     // The factorisations belong to the old pattern: analysed again.
-    kc_pattern_ = pattern;
     whole_factor_.reset();
     contact_block_.Reset();
     contact_block_active_ = false;
