@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "core/finite.h"
 
@@ -49,6 +51,38 @@ TEST(SparseTest, BlockEntriesTransposeAndScatter) {
   EXPECT_EQ(m.coeff(3, 0), -14.0);
   EXPECT_EQ(m.coeff(1, 1), -6.0);
   EXPECT_THROW(ScatterPattern(2, 2, {{2, 0}}), std::invalid_argument);
+}
+
+// The pattern built directly in compressed-column form is the one Eigen's setFromTriplets
+// gives (distinct entries, rows increasing in each column), and every entry's slot holds its
+// own (row, column): random entries with many duplicates, empty rows and columns.
+TEST(SparseTest, PatternIsSetFromTripletsPatternAndSlotsPointAtTheirEntries) {
+  std::mt19937 rng(33);
+  const int rows = 37, cols = 29;
+  std::uniform_int_distribution<int> row(0, rows - 1), col(0, cols - 5);  // 4 empty columns
+  std::vector<ScatterPattern::Entry> e;
+  std::vector<Triplet> t;
+  for (int k = 0; k < 600; ++k) {
+    e.emplace_back(row(rng) / 2 * 2, col(rng));  // odd rows empty
+    t.emplace_back(e.back().first, e.back().second, 0.0);
+  }
+  SpMat reference(rows, cols);
+  reference.setFromTriplets(t.begin(), t.end());
+  reference.makeCompressed();
+  const ScatterPattern p(rows, cols, e);
+  const SpMat& m = p.pattern();
+  ASSERT_EQ(m.nonZeros(), reference.nonZeros());
+  ASSERT_TRUE(m.isCompressed());
+  for (int j = 0; j <= cols; ++j) EXPECT_EQ(m.outerIndexPtr()[j], reference.outerIndexPtr()[j]);
+  for (int s = 0; s < m.nonZeros(); ++s) {
+    EXPECT_EQ(m.innerIndexPtr()[s], reference.innerIndexPtr()[s]);
+    EXPECT_EQ(m.valuePtr()[s], 0.0);
+  }
+  for (std::size_t k = 0; k < e.size(); ++k) {
+    const int s = p.slot(k);
+    EXPECT_EQ(m.innerIndexPtr()[s], e[k].first);
+    EXPECT_TRUE(m.outerIndexPtr()[e[k].second] <= s && s < m.outerIndexPtr()[e[k].second + 1]);
+  }
 }
 
 TEST(FiniteTest, AllFiniteFindsEveryKindOfNonFiniteValue) {

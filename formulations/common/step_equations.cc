@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "core/huge_pages.h"
+
 namespace cb {
 
 struct StepEquationSystem::PatternCache {
@@ -152,8 +154,15 @@ void StepEquationSystem::BuildPattern() {
   PatternCache& cache = *cache_;
   // Entries in the order the fill below adds them.
   std::vector<ScatterPattern::Entry> e;
-  cache.first_stiffness = e.size();
   const std::vector<std::pair<int, int>> stiffness_entries = model.StiffnessEntries();
+  // Room for every entry at once (the extra row: at most 2 nc + 1), on huge pages: grown by
+  // doubling it was copied ~log2(nnz) times into fresh pages.
+  const std::size_t bound = stiffness_entries.size() + curvature_.nonZeros() +
+                            2 * static_cast<std::size_t>(gap_jacobian_.nonZeros()) +
+                            2 * static_cast<std::size_t>(l.d) + 6 * static_cast<std::size_t>(l.nc) +
+                            4;
+  ReserveOnHugePages(&e, bound);
+  cache.first_stiffness = e.size();
   e.insert(e.end(), stiffness_entries.begin(), stiffness_entries.end());
   cache.first_curvature = e.size();
   AppendBlockEntries(curvature_, 0, 0, false, &e);

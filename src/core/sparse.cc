@@ -4,31 +4,92 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "core/huge_pages.h"
 
 namespace cb {
 
-ScatterPattern::ScatterPattern(int rows, int cols, const std::vector<Entry>& entries) {
-  std::vector<Triplet> triplets;
-  triplets.reserve(entries.size());
+namespace {
+
+// Checks every entry and returns, per column j, the numbers k of the entries in column j in
+// [start[j], start[j + 1]) of the second vector (a counting sort by column: count, prefix sum,
+// fill).
+std::pair<std::vector<int>, std::vector<int>> EntriesByColumn(
+    int rows, int cols, const std::vector<ScatterPattern::Entry>& entries) {
+  std::vector<int> start(static_cast<std::size_t>(cols) + 1, 0);
   for (const auto& [i, j] : entries) {
     if (i < 0 || i >= rows || j < 0 || j >= cols) {
       throw std::invalid_argument("ScatterPattern: entry (" + std::to_string(i) + ", " +
                                   std::to_string(j) + ") outside a " + std::to_string(rows) +
                                   " x " + std::to_string(cols) + " matrix");
     }
-    triplets.emplace_back(i, j, 0.0);
+    ++start[j + 1];
   }
+  for (int j = 0; j < cols; ++j) start[j + 1] += start[j];
+  std::vector<int> next(start.begin(), start.end() - 1);
+  std::vector<int> numbers;
+  ReserveOnHugePages(&numbers, entries.size());
+  numbers.resize(entries.size());
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    numbers[next[entries[k].second]++] = static_cast<int>(k);
+  }
+  return {std::move(start), std::move(numbers)};
+}
+
+// Huge pages for a compressed matrix's index and value arrays, before they are written.
+void AdviseStorage(SpMat* m) {
+  const auto nnz = static_cast<std::size_t>(m->nonZeros());
+  AdviseHugePages(m->innerIndexPtr(), sizeof(int) * nnz);
+  AdviseHugePages(m->valuePtr(), sizeof(double) * nnz);
+}
+
+}  // namespace
+
+// The compressed-column pattern built directly: the entries bucketed by column, each column's
+// distinct rows counted (first pass, sizing the storage once) and then written sorted, with
+// each entry's slot (second pass). The result is the pattern Eigen's setFromTriplets gives
+// (distinct entries, rows increasing within a column) without its row-major temporary and
+// transposing copy.
+ScatterPattern::ScatterPattern(int rows, int cols, const std::vector<Entry>& entries) {
+  const auto [start, numbers] = EntriesByColumn(rows, cols, entries);
+  std::vector<int> seen_in(rows, -1);  // the last column in which a row was met
   pattern_.resize(rows, cols);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
-  slots_.reserve(entries.size());
-  const int* outer = pattern_.outerIndexPtr();
-  const int* inner = pattern_.innerIndexPtr();
-  for (const auto& [i, j] : entries) {
-    const int* first = inner + outer[j];
-    const int* last = inner + outer[j + 1];
-    const int* it = std::lower_bound(first, last, i);
-    slots_.push_back(static_cast<int>(it - inner));
+  int* outer = pattern_.outerIndexPtr();
+  outer[0] = 0;
+  for (int j = 0; j < cols; ++j) {
+    int distinct = 0;
+    for (int q = start[j]; q < start[j + 1]; ++q) {
+      const int i = entries[numbers[q]].first;
+      if (seen_in[i] != j) {
+        seen_in[i] = j;
+        ++distinct;
+      }
+    }
+    outer[j + 1] = outer[j] + distinct;
+  }
+  pattern_.resizeNonZeros(outer[cols]);
+  AdviseStorage(&pattern_);
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + outer[cols], 0.0);
+  int* inner = pattern_.innerIndexPtr();
+  std::fill(seen_in.begin(), seen_in.end(), -1);
+  std::vector<int> place(rows, 0);  // a row's slot in the current column
+  ReserveOnHugePages(&slots_, entries.size());
+  slots_.resize(entries.size());
+  for (int j = 0; j < cols; ++j) {
+    int end = outer[j];
+    for (int q = start[j]; q < start[j + 1]; ++q) {
+      const int i = entries[numbers[q]].first;
+      if (seen_in[i] != j) {
+        seen_in[i] = j;
+        inner[end++] = i;
+      }
+    }
+    std::sort(inner + outer[j], inner + end);
+    for (int s = outer[j]; s < end; ++s) place[inner[s]] = s;
+    for (int q = start[j]; q < start[j + 1]; ++q)
+      slots_[numbers[q]] = place[entries[numbers[q]].first];
   }
 }
 
@@ -44,8 +105,22 @@ void ScatterPattern::Reset(SpMat* m) const {
       // for zero bytes; UBSan.)
       (pattern_.nonZeros() == 0 || std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
                                                sizeof(int) * pattern_.nonZeros()) == 0);
-  if (!same) *m = pattern_;
+  if (!same) CopyOnHugePages(pattern_, m);
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
+}
+
+void CopyOnHugePages(const SpMat& from, SpMat* to) {
+  if (!from.isCompressed()) {
+    *to = from;
+    to->makeCompressed();
+    return;
+  }
+  to->resize(from.rows(), from.cols());
+  to->resizeNonZeros(from.nonZeros());
+  AdviseStorage(to);
+  std::copy_n(from.outerIndexPtr(), from.outerSize() + 1, to->outerIndexPtr());
+  std::copy_n(from.innerIndexPtr(), from.nonZeros(), to->innerIndexPtr());
+  std::copy_n(from.valuePtr(), from.nonZeros(), to->valuePtr());
 }
 
 void AppendBlockEntries(const SpMat& block, int row_offset, int col_offset, bool transpose,

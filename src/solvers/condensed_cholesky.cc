@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/finite.h"
+#include "core/sparse.h"
 #include "solvers/condensed_system.h"
 #include "solvers/jacobian_blocks.h"
 
@@ -69,7 +70,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       return false;
     }
     if (!analysed_ || !SamePattern(m)) {
-      jacobian_ = m;
+      CopyOnHugePages(m, &jacobian_);
       AnalysePattern();
       analysed_ = true;
     } else {

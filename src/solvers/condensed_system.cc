@@ -9,6 +9,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/huge_pages.h"
+
 namespace cb {
 namespace {
 
@@ -30,7 +32,13 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
   blocks_ = std::move(blocks);
   const int d = blocks_.num_dofs, nc = blocks_.num_pairs;
   // Kc = A (lower) + the pair springs G_p^T w_p G_p (lower).
+  std::size_t num_entries = blocks_.stiffness_lower.size();
+  for (int p = 0; p < nc; ++p) {
+    const std::size_t k = blocks_.pair_begin[p + 1] - blocks_.pair_begin[p];
+    num_entries += k * (k + 1) / 2;
+  }
   std::vector<ScatterPattern::Entry> kc_entries;
+  ReserveOnHugePages(&kc_entries, num_entries);  // filled once, without regrowing
   for (const JacobianBlocks::Entry& a : blocks_.stiffness_lower)
     kc_entries.emplace_back(a.row, a.col);
   for (int p = 0; p < nc; ++p) {
@@ -41,13 +49,12 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
     }
   }
   const ScatterPattern kc(d, d, kc_entries);
-  const SpMat& pattern = kc.pattern();
-  const bool same_kc = kc_pattern_.rows() == d && SamePattern(pattern, kc_pattern_);
-  kc_ = pattern;
+  // kc_ keeps the pattern it was given (only its values change): the pattern of the analyses.
+  const bool same_kc = kc_.rows() == d && SamePattern(kc.pattern(), kc_);
+  kc.Reset(&kc_);  // copied (onto huge pages) only when the pattern is new
   kc_slots_ = kc.slots();
   if (!same_kc) {
     // The factorisations belong to the old pattern: analysed again.
-    kc_pattern_ = pattern;
     whole_factor_.reset();
     contact_block_.Reset();
     contact_block_active_ = false;

@@ -67,9 +67,8 @@ class CondensedSystem {
   Cholmod cholmod_;  // first: it outlives the factors below
   JacobianBlocks blocks_;
 
-  // Kc's lower triangle: its pattern (to see a change), its values, and where the
+  // Kc's lower triangle: its pattern (which tells a change) with its values, and where the
   // contributions land (A's lower triangle in blocks_ order, then the springs pair by pair).
-  SpMat kc_pattern_;
   SpMat kc_;
   std::vector<int> kc_slots_;
   CholmodFactor whole_factor_;

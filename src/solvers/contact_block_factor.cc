@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 namespace cb {
 namespace {
@@ -14,6 +15,41 @@ namespace {
 // most 1 / kMaxContactFraction of them.
 constexpr int kMinDofs = 1000;
 constexpr int kMaxContactFraction = 8;
+
+// The lower triangle of A_ii's pattern with its whole diagonal, in compressed columns straight
+// from A's lower triangle (count, prefix sum, fill): A's entries come column by column with
+// rows increasing from the diagonal (JacobianBlocks::stiffness_lower), and renumbering the
+// interior dofs in their order keeps that, so a missing diagonal goes first in its column.
+// The values are ones; only the pattern is analysed.
+SpMat InteriorPattern(const JacobianBlocks& blocks, const std::vector<int>& interior_index,
+                      int ni) {
+  std::vector<int> count(ni, 0);
+  std::vector<char> has_diagonal(ni, 0);
+  for (const JacobianBlocks::Entry& a : blocks.stiffness_lower) {
+    const int i = interior_index[a.row];
+    const int j = interior_index[a.col];
+    if (i < 0 || j < 0) continue;
+    ++count[j];
+    if (i == j) has_diagonal[j] = 1;
+  }
+  SpMat aii(ni, ni);
+  int* outer = aii.outerIndexPtr();
+  outer[0] = 0;
+  for (int j = 0; j < ni; ++j) outer[j + 1] = outer[j] + count[j] + (has_diagonal[j] ? 0 : 1);
+  aii.resizeNonZeros(outer[ni]);
+  std::fill(aii.valuePtr(), aii.valuePtr() + outer[ni], 1.0);
+  int* inner = aii.innerIndexPtr();
+  std::vector<int> next(outer, outer + ni);
+  for (int j = 0; j < ni; ++j) {
+    if (!has_diagonal[j]) inner[next[j]++] = j;
+  }
+  for (const JacobianBlocks::Entry& a : blocks.stiffness_lower) {
+    const int i = interior_index[a.row];
+    const int j = interior_index[a.col];
+    if (i >= 0 && j >= 0) inner[next[j]++] = i;
+  }
+  return aii;
+}
 
 }  // namespace
 
@@ -72,16 +108,7 @@ std::vector<int> ContactBlockFactor::InteriorOrdering(const JacobianBlocks& bloc
       interior.push_back(j);
     }
   }
-  std::vector<Triplet> t;
-  for (const JacobianBlocks::Entry& a : blocks.stiffness_lower) {
-    const int i = interior_index[a.row];
-    const int j = interior_index[a.col];
-    if (i >= 0 && j >= 0) t.emplace_back(i, j, 1.0);
-  }
-  for (int i = 0; i < ni; ++i) t.emplace_back(i, i, 1.0);
-  SpMat aii(ni, ni);
-  aii.setFromTriplets(t.begin(), t.end());
-  aii.makeCompressed();
+  SpMat aii = InteriorPattern(blocks, interior_index, ni);
   cholmod_sparse view = LowerTriangleView(aii);
   const CholmodFactor interior_symbolic = cholmod_->Analyse(&view);
   if (!interior_symbolic) return {};
