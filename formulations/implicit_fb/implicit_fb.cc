@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "formulations/common/reduced_step_system.h"
+
 namespace cb {
 
 bool ImplicitFbOptions::IsValid(std::string* why) const {
@@ -59,7 +61,13 @@ std::string ImplicitFb::settings() const {
   std::ostringstream out;
   out << "solver=" << options_.solver << ";eta=" << static_cast<int>(options_.eta)
       << ";linear_solver=" << options_.solver_options.linear_solver;
+  if (options_.reduced_newton) out << ";reduced_newton=1";
   return out.str();
+}
+
+bool ImplicitFb::DoAccepts(const StepProblem& step, std::string* why) const {
+  return !options_.reduced_newton ||
+         ReducedStepSystem::Applies(step, "implicit-fb:reduced_newton", why);
 }
 
 void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
@@ -69,7 +77,11 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
   const StepEquationLayout& l = system.layout();
   Vec x = initial.x;
 
-  RunStepEquationSolver(solvers_.For(start), system, &x, controls, result);
+  if (options_.reduced_newton) {
+    RunReducedStepSolver(solvers_.For(start), system, &x, controls, result);
+  } else {
+    RunStepEquationSolver(solvers_.For(start), system, &x, controls, result);
+  }
   result->details["gamma"] = std::to_string(initial.gamma);
   result->details["rho0"] = std::to_string(initial.x[l.rho()]);
   result->details["rho"] = std::to_string(x[l.rho()]);
@@ -85,6 +97,7 @@ std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config) {
   options.solver_options = config.solver_options;
   options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
   options.rho_min = reader.GetReal("rho_min", options.rho_min);
+  options.reduced_newton = reader.GetBool("reduced_newton", options.reduced_newton);
   reader.Finish();
   return std::make_unique<ImplicitFb>(options);
 }

@@ -37,6 +37,8 @@ struct ImplicitFbOptions {
   SolverOptions solver_options;
   double gamma_tol = 1e-2;  // gamma_ of (37)
   double rho_min = 1e-3;    // rho_ of (42): rho0 = rho* if |rho*| > rho_, else rho_
+  // Newton on the contact unknowns alone (common/reduced_step_system.h); off by default.
+  bool reduced_newton = false;
 
   bool IsValid(std::string* why) const;
 };
@@ -65,6 +67,7 @@ class ImplicitFb final : public Formulation {
   const ImplicitFbOptions& options() const { return options_; }
 
  private:
+  bool DoAccepts(const StepProblem& step, std::string* why) const override;
   void DoSolve(const StepProblem& step, const StartPoint& start, const SolveControls& controls,
                StepResult* result) override;
 
@@ -84,7 +87,8 @@ StepRows ImplicitFbRows(const StepProblem& step, const StepProblem& local, const
                         std::shared_ptr<StepEquationSystem::PatternCache> cache);
 
 // Registry factory: config.solver, config.solver_options and config.eta; backend options
-// `gamma_tol` and `rho_min` (an unknown key or a bad value throws std::invalid_argument).
+// `gamma_tol`, `rho_min` and `reduced_newton` (an unknown key or a bad value throws
+// std::invalid_argument).
 std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config);
 
 }  // namespace cb

@@ -96,6 +96,8 @@ BodyContactModel::BodyContactModel(std::shared_ptr<const ElasticBody> body,
   curvature_pattern_ = ScatterPattern(d, d, curvature_entries);
 }
 
+bool BodyContactModel::has_constant_stiffness() const { return body_->is_linear(); }
+
 bool BodyContactModel::is_linear() const {
   if (!body_->is_linear()) return false;
   for (const ContactPair& pair : pairs_) {

@@ -30,6 +30,7 @@ class BodyContactModel final : public ContactModel {
   int num_dofs() const override { return body_->num_dofs(); }
   int num_pairs() const override { return static_cast<int>(pairs_.size()); }
   bool is_linear() const override;
+  bool has_constant_stiffness() const override;
   double Energy(const Vec& u) const override { return body_->Energy(u); }
   void InternalForce(const Vec& u, Vec* force) const override { body_->InternalForce(u, force); }
   void Stiffness(const Vec& u, SpMat* stiffness) const override { body_->Stiffness(u, stiffness); }

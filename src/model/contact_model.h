@@ -24,6 +24,9 @@ class ContactModel {
   // True for small deformation: quadratic energy and affine gaps (stiffness and gap Jacobian
   // do not depend on u, and GapCurvature is zero).
   virtual bool is_linear() const { return false; }
+  // True when hess pi does not depend on u (a small-deformation body, whatever its obstacles):
+  // the reduced Newton of formulations/common/reduced_step_system.h eliminates its interior once.
+  virtual bool has_constant_stiffness() const { return is_linear(); }
 
   // pi(u), the strain energy.
   virtual double Energy(const Vec& u) const = 0;

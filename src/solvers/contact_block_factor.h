@@ -52,6 +52,9 @@ class ContactBlockFactor {
   // Counts the factorisations of A + D0, so that results of Forward can be kept while it holds.
   int generation() const { return generation_; }
   int num_analyses() const { return num_analyses_; }
+  // S_cc = L_cc L_cc^T - D0 = A_cc - A_ci A_ii^-1 A_ic of the last factorisation of A + D0, or
+  // nullptr when none holds (interior_elimination.h reads it).
+  const Mat* stiffness_schur_complement() const { return factor_holds_ ? &s_cc_ : nullptr; }
 
  private:
   std::vector<int> InteriorOrdering(const JacobianBlocks& blocks);
