@@ -2,11 +2,9 @@
 // the usage only after an argument error, the summary of a fixed-load run and the table that
 // ends a comparison.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -15,25 +13,16 @@
 #include "core/median.h"
 #include "harness/compare_table.h"
 #include "harness/suggest.h"
+#include "run_contactbench.h"
 #include "source_tree.h"
 
 namespace {
 
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
+using Outcome = ::cb::testing_support::CliOutcome;
 
 // `contactbench ARGS` with `streams` ("2>&1", "2>/dev/null", "2>&1 >/dev/null").
 Outcome RunCli(const std::string& args, const std::string& streams = "2>&1") {
-  Outcome out;
-  FILE* pipe = popen((std::string(CONTACTBENCH_BINARY) + " " + args + " " + streams).c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out.output += buffer;
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
+  return ::cb::testing_support::RunContactbench(args, streams);
 }
 
 const std::filesystem::path kExamples = ::cb::testing_support::SourceRoot() / "examples";

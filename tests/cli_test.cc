@@ -1,9 +1,7 @@
 // The suite driver end to end: exit statuses, messages and the records it writes.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,34 +16,22 @@
 
 #include "harness/options.h"
 #include "record_table.h"
+#include "run_contactbench.h"
 #include "source_tree.h"
 
 namespace {
 
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Outcome = ::cb::testing_support::CliOutcome;
+using ::cb::testing_support::RunShell;
 
-// The output and exit status of a shell command.
-Outcome Capture(const std::string& command) {
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out.output += buffer;
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
+// stdout and stderr.
 Outcome RunCli(const std::string& arguments) {
-  return Capture(std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>&1");
+  return ::cb::testing_support::RunContactbench(arguments);
 }
 
 // Only stdout: the help and the usage are printed there.
 Outcome RunCliStdout(const std::string& arguments) {
-  return Capture(std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>/dev/null");
+  return ::cb::testing_support::RunContactbench(arguments, "2>/dev/null");
 }
 
 std::filesystem::path TempDir(const std::string& name) {
@@ -606,8 +592,8 @@ TEST(CliTest, AFullDiskStopsTheRunWithStatus3NamingTheFile) {
        {std::string("run --problem arch-flat --formulation implicit-fb --steps 50"),
         std::string("compare --problem arch-flat --formulations implicit-fb --steps 50")}) {
     const auto out = dir / command.substr(0, command.find(' '));
-    const Outcome o = Capture("ulimit -f 10; " + std::string(CONTACTBENCH_BINARY) + " " + command +
-                              " --out " + out.string() + " 2>&1");
+    const Outcome o = RunShell("ulimit -f 10; " + std::string(CONTACTBENCH_BINARY) + " " + command +
+                               " --out " + out.string() + " 2>&1");
     EXPECT_EQ(o.status, 3) << command << "\n" << o.output;
     EXPECT_NE(o.output.find("cannot write '" + out.string() + "/"), std::string::npos) << o.output;
     ExpectOnlyWholeLines(out);
@@ -725,7 +711,7 @@ TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
   const auto dir = TempDir("not_regular");
   std::filesystem::create_directories(dir / "a-directory");
   const std::string fifo = (dir / "a-fifo").string();
-  ASSERT_EQ(Capture("mkfifo " + fifo).status, 0);
+  ASSERT_EQ(RunShell("mkfifo " + fifo).status, 0);
   // A mesh path that is a directory.
   std::ofstream(dir / "mesh-dir.json") << R"({"kind": "plane-stress-q4", "thickness": 0.1,
       "material": {"E": 1000.0, "nu": 0.25}, "mesh": {"file": "a-directory"}})";
@@ -741,8 +727,8 @@ TEST(CliTest, InputsThatAreNotRegularFilesAreRefusedAtOnce) {
   for (const auto& c : cases) {
     // `timeout`: reading /dev/zero or a FIFO without a writer would never end.
     const Outcome o =
-        Capture("timeout 20 " + std::string(CONTACTBENCH_BINARY) + " run --problem-file " + c.file +
-                " --formulation implicit-fb --out " + (dir / "out").string() + " 2>&1");
+        RunShell("timeout 20 " + std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
+                 c.file + " --formulation implicit-fb --out " + (dir / "out").string() + " 2>&1");
     EXPECT_EQ(o.status, 2) << c.file << "\n" << o.output;
     EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.file << "\n" << o.output;
   }
@@ -760,9 +746,9 @@ namespace {
 TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
   const auto dir = TempDir("memory_refused");
   for (const char* n : {"100", "2000"}) {
-    const Outcome o = Capture("CONTACTBENCH_MEMORY_LIMIT=1e8 " + std::string(CONTACTBENCH_BINARY) +
-                              " run --problem block --set n=" + std::string(n) +
-                              " --formulation implicit-fb --out " + dir.string() + " 2>&1");
+    const Outcome o = RunShell("CONTACTBENCH_MEMORY_LIMIT=1e8 " + std::string(CONTACTBENCH_BINARY) +
+                               " run --problem block --set n=" + std::string(n) +
+                               " --formulation implicit-fb --out " + dir.string() + " 2>&1");
     EXPECT_EQ(o.status, 2) << o.output;
     EXPECT_NE(o.output.find("--problem block needs an estimated"), std::string::npos) << o.output;
     EXPECT_NE(o.output.find("CONTACTBENCH_MEMORY_LIMIT"), std::string::npos) << o.output;
@@ -770,7 +756,7 @@ TEST(CliTest, AProblemTooLargeForTheMemoryIsRefusedAtOnce) {
     EXPECT_FALSE(std::filesystem::exists(dir)) << "work started for n=" << n;
   }
   // The same limit lets a small problem through.
-  const Outcome small = Capture(
+  const Outcome small = RunShell(
       "CONTACTBENCH_MEMORY_LIMIT=1e9 " + std::string(CONTACTBENCH_BINARY) +
       " run --problem block --set n=4 --formulation implicit-fb --out " + dir.string() + " 2>&1");
   EXPECT_EQ(small.status, 0) << small.output;
@@ -800,11 +786,11 @@ TEST(CliTest, RunningOutOfMemorySaysWhileDoingWhat) {
   const std::string run =
       "ulimit -v 250000; OPENBLAS_NUM_THREADS=1 " + std::string(CONTACTBENCH_BINARY) +
       " run --problem block --set n=600 --formulation implicit-fb --out " + dir.string();
-  const Outcome refused = Capture("(" + run + ") 2>&1");
+  const Outcome refused = RunShell("(" + run + ") 2>&1");
   EXPECT_EQ(refused.status, 2) << refused.output;
   EXPECT_NE(refused.output.find("(RLIMIT_AS)"), std::string::npos) << refused.output;
   EXPECT_EQ(refused.output.find("usage:"), std::string::npos) << refused.output;  // a data error
-  const Outcome insisted = Capture("(" + run + " --allow-memory) 2>&1");
+  const Outcome insisted = RunShell("(" + run + " --allow-memory) 2>&1");
   EXPECT_EQ(insisted.status, 3) << insisted.output;
   EXPECT_NE(insisted.output.find("contactbench: out of memory while building the problem"),
             std::string::npos)

@@ -42,17 +42,9 @@ void WriteJson(const fs::path& dir, const nlohmann::json& run) {
 
 // scripts/diff_records.py OLD NEW: every record the same, times aside.
 CliOutcome DiffRecords(const fs::path& a, const fs::path& b) {
-  CliOutcome out;
-  const std::string command = "/usr/bin/python3 " +
-                              (SourceRoot() / "scripts" / "diff_records.py").string() + " " +
-                              a.string() + " " + b.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[4096];
-  while (pipe != nullptr && std::fgets(buffer, sizeof buffer, pipe) != nullptr)
-    out.output += buffer;
-  const int raw = pipe != nullptr ? pclose(pipe) : -1;
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
+  return cb::testing_support::RunShell("/usr/bin/python3 " +
+                                       (SourceRoot() / "scripts" / "diff_records.py").string() +
+                                       " " + a.string() + " " + b.string() + " 2>&1");
 }
 
 // Reruns DIR/a into DIR/b: it must succeed and leave the same records (times aside).
