@@ -256,7 +256,7 @@ TEST_F(FclibRoundTrip, TheCliRefusesFrictionAndRecordsItsDrop) {
   ASSERT_EQ(run.status, 0) << run.output;
   std::ifstream in(dir / "run" / "run.json");
   const nlohmann::json record = nlohmann::json::parse(in);
-  const auto notes = record.at("problem_notes");
+  const auto& notes = record.at("problem_notes");
   ASSERT_EQ(notes.size(), 2u) << notes.dump();
   // The two changes made to the file's problem, in the order made: M symmetrised, then the
   // friction of its one contact dropped.
