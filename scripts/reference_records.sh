@@ -2,6 +2,8 @@
 # Writes the records that a change of structure or speed must leave unchanged: the P1 solve
 # (cold, dogleg and Newton; near the solution), 400 steps of P2 and 1000 through its limit and
 # bifurcation points with a branch switch, 400 steps of P3 (implicit-fb) and 200 (active-set),
+# the two-bar truss onto its floor with theta = 0.2 by nonsmooth-fb and active-set (step 3
+# stalls and takes the restart of formulations/nonsmooth/nonsmooth_restart.h, then verifies),
 # and a replay comparison on the two-bar truss with an obstacle. Compare two such directories
 # with scripts/diff_records.py.
 # Usage: scripts/reference_records.sh CONTACTBENCH_BINARY OUT_DIR
@@ -24,5 +26,7 @@ run p2-switch --problem arch-flat --formulation implicit-fb --steps 1000 --bifur
 run p1-near --problem block --formulation implicit-fb --start near --solver newton --eta 3
 run p3 --problem arch-curved --formulation implicit-fb --steps 400 --save-every 200
 run p3-active-set --problem arch-curved --formulation active-set --steps 200
+run restart-fb --problem two-bar-obstacle --formulation nonsmooth-fb --arc-length 0.2
+run restart-min --problem two-bar-obstacle --formulation active-set --arc-length 0.2
 "$cb" compare --problem two-bar-obstacle --formulations implicit-fb,nonsmooth-fb,active-set,ipopt-mpcc --steps 60 --out "$out/compare" >/dev/null 2>"$logs/compare" ||
   echo "exit $?" >>"$logs/compare"

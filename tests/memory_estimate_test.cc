@@ -3,24 +3,18 @@
 // direct factor's fill in 3-D, the linear solver chosen; refused at once with the estimate, the
 // machine's memory and the option that lifts the bound (issue 30).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "harness/memory_budget.h"
+#include "run_contactbench.h"
 #include "source_tree.h"
 
 namespace {
 
-struct Outcome {
-  int status = -1;
-  std::string output;
-  double seconds = 0.0;
-};
+using Outcome = cb::testing_support::CliOutcome;
 
 // `contactbench run ARGUMENTS --out DIR` with CONTACTBENCH_MEMORY_LIMIT=`limit` ("" for the
 // machine's own), ended after 60 s: a run that starts building instead of refusing fails.
@@ -30,19 +24,9 @@ Outcome RunWithLimit(const std::string& limit, const std::string& arguments) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("contactbench_memory_estimate_" + test + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
-  const std::string command = "timeout -s KILL 60 env " +
-                              (limit.empty() ? "" : "CONTACTBENCH_MEMORY_LIMIT=" + limit + " ") +
-                              CONTACTBENCH_BINARY + " run " + arguments + " --out " + dir.string() +
-                              " 2>&1";
-  const auto start = std::chrono::steady_clock::now();
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out.output += buffer;
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Outcome out = cb::testing_support::RunContactbench(
+      "run " + arguments + " --out " + dir.string(), "2>&1",
+      "timeout -s KILL 60 env" + (limit.empty() ? "" : " CONTACTBENCH_MEMORY_LIMIT=" + limit));
   EXPECT_FALSE(std::filesystem::exists(dir / "steps.csv")) << "work started: " << arguments;
   std::filesystem::remove_all(dir);
   return out;

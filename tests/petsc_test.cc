@@ -7,9 +7,7 @@
 #include "formulations/petsc/petsc.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -21,6 +19,7 @@
 #include "formulations/registry.h"
 #include "path/path.h"
 #include "problems/problem.h"
+#include "run_contactbench.h"
 #include "verdict/verdict.h"
 
 namespace cb {
@@ -219,20 +218,10 @@ INSTANTIATE_TEST_SUITE_P(Formulations, PetscTest, ::testing::Values("petsc-rsls"
 
 // --- the CLI ----------------------------------------------------------------------------------
 
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
+using Outcome = ::cb::testing_support::CliOutcome;
 
 Outcome RunCli(const std::string& arguments) {
-  Outcome out;
-  FILE* pipe = popen((std::string(CONTACTBENCH_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out.output += buffer;
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
+  return ::cb::testing_support::RunContactbench(arguments);
 }
 
 std::string TempDir(const std::string& name) {

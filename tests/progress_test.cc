@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "run_contactbench.h"
 #include "source_tree.h"
 
 namespace {
@@ -112,15 +113,11 @@ TEST(ProgressTest, OnATerminalEveryRewriteClearsTheLineAndTheSummaryStartsALine)
 TEST(ProgressTest, OffATerminalNothingButTheSummaryIsShown) {
   const auto dir = std::filesystem::temp_directory_path() / "contactbench_progress_pipe";
   std::filesystem::remove_all(dir);
-  const std::string command = std::string(CONTACTBENCH_BINARY) + " run --problem-file " +
-                              Example("truss-2d-bar-wall.json") +
-                              " --formulation implicit-fb --out " + dir.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string text;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
-  EXPECT_EQ(pclose(pipe), 0);
+  const auto run = cb::testing_support::RunContactbench(
+      "run --problem-file " + Example("truss-2d-bar-wall.json") +
+      " --formulation implicit-fb --out " + dir.string());
+  EXPECT_EQ(run.status, 0) << run.output;
+  const std::string& text = run.output;
   EXPECT_EQ(text.find('\r'), std::string::npos) << text;
   EXPECT_EQ(text.find('\x1b'), std::string::npos) << text;
   EXPECT_EQ(text.rfind("truss-2d-bar-wall implicit-fb: ", 0), 0u) << text;

@@ -55,4 +55,35 @@ inline ::testing::AssertionResult RefusedAt(const std::string& message, const st
   return Names(reason, expected.names);
 }
 
+// The refusal in a command's output: what follows "contactbench: " on the first line that starts
+// so ("" when there is none).
+inline std::string RefusalLine(const std::string& output) {
+  const std::string head = "contactbench: ";
+  std::size_t at = output.rfind(head, 0) == 0 ? 0 : output.find("\n" + head);
+  if (at == std::string::npos) return "";
+  if (output[at] == '\n') ++at;
+  const std::size_t end = output.find('\n', at);
+  return output.substr(at + head.size(), end == std::string::npos ? end : end - at - head.size());
+}
+
+// Success when `output` holds a refusal of the command line ("contactbench: WHERE: reason" or
+// "contactbench: WHERE reason") at `expected.where`, the option or the command as typed
+// ("--steps", "run"; "" leaves it open), whose reason names every one of `expected.names`.
+inline ::testing::AssertionResult RefusedOption(const std::string& output,
+                                                const Refusal& expected) {
+  std::string reason = RefusalLine(output);
+  if (reason.empty()) return ::testing::AssertionFailure() << "no refusal in \"" << output << "\"";
+  if (!expected.where.empty()) {
+    const bool at = reason.rfind(expected.where, 0) == 0 &&
+                    (reason.size() == expected.where.size() ||
+                     reason[expected.where.size()] == ':' || reason[expected.where.size()] == ' ');
+    if (!at) {
+      return ::testing::AssertionFailure()
+             << "\"" << reason << "\" does not point at " << expected.where;
+    }
+    reason = reason.substr(expected.where.size());
+  }
+  return Names(reason, expected.names);
+}
+
 }  // namespace cb::testing_support

@@ -1,7 +1,7 @@
 // The glue between PETSc's SNES and the suite that the serial PETSc formulations (SnesVi,
-// petsc_adapter.h) and the distributed ones (DistributedSteps, petsc_dist/dist_steps.h) share:
-// a callback's exception kept for after SNESSolve, an iteration's record, the stopping tests in
-// their order, and the controls (SolveControls' time limit and interrupt) checked between
+// petsc_adapter.h) and the distributed ones (DistributedSteps, petsc_dist/petsc_dist_adapter.h)
+// share: a callback's exception kept for after SNESSolve, an iteration's record, the stopping tests
+// in their order, and the controls (SolveControls' time limit and interrupt) checked between
 // iterations. The outcome after SNESSolve is RecordSnesOutcome (petsc_adapter.h). A distributed
 // solve takes every decision with `agree`, which reduces it over the processes (AnyProcess,
 // parallel/processes.h), so that they all run the same iterations; a serial one with its own.

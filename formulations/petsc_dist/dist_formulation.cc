@@ -7,8 +7,8 @@
 
 #include "formulations/common/start_solvers.h"
 #include "formulations/common/step_equations.h"
-#include "formulations/petsc_dist/dist_steps.h"
 #include "formulations/petsc_dist/petsc_dist.h"
+#include "formulations/petsc_dist/petsc_dist_adapter.h"
 
 namespace cb {
 
@@ -40,7 +40,7 @@ std::string LinearOptions(const std::string& linear) {
   return " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps -mat_mumps_icntl_7 4";
 }
 
-// The defaults of dist_steps.h for a SNES type.
+// The defaults of petsc_dist_adapter.h for a SNES type.
 std::string DefaultOptions(const std::string& snes_type, const SolverOptions& solver,
                            const std::string& linear) {
   if (IsVi(snes_type)) {

@@ -1,6 +1,6 @@
 // The formulation every dist-* one is: a serial formulation's rows (common/step_rows.h) on this
-// process's contact-only step (dist_steps.h), solved by one DistributedSteps kept across the
-// steps of a path. Each dist-* file (dist_implicit_fb.cc, dist_nonsmooth_fb.cc,
+// process's contact-only step (petsc_dist_adapter.h), solved by one DistributedSteps kept across
+// the steps of a path. Each dist-* file (dist_implicit_fb.cc, dist_nonsmooth_fb.cc,
 // dist_active_set.cc, dist_petsc_rsls.cc, dist_petsc_ssls.cc) names its serial counterpart's
 // rows and its SNES in a DistRecipe; nothing here knows which formulation it runs.
 //

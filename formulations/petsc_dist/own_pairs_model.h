@@ -1,5 +1,5 @@
-// The contact-only model of one process of a distributed step system (dist_steps.h): the body
-// without elements, every obstacle and every pair of the whole model in the whole model's
+// The contact-only model of one process of a distributed step system (petsc_dist_adapter.h): the
+// body without elements, every obstacle and every pair of the whole model in the whole model's
 // numbering, but only this process's pairs (element_partition.h) evaluated, and the load only on
 // the rows this process owns. Evaluated by the formulation's own serial step equations, it gives
 //   - on this process's pairs' rows, (30) and the complementarity rows exactly as the whole

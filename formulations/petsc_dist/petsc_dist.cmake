@@ -8,7 +8,7 @@ target_sources(contactbench_formulations PRIVATE ${CMAKE_CURRENT_LIST_DIR}/eleme
 if(CONTACTBENCH_HAVE_PETSC)
   target_sources(contactbench_formulations PRIVATE
     ${CMAKE_CURRENT_LIST_DIR}/dist_line_search.cc
-    ${CMAKE_CURRENT_LIST_DIR}/dist_steps.cc
+    ${CMAKE_CURRENT_LIST_DIR}/petsc_dist_adapter.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_formulation.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_implicit_fb.cc
     ${CMAKE_CURRENT_LIST_DIR}/dist_nonsmooth_fb.cc

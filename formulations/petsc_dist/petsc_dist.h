@@ -22,8 +22,8 @@ namespace cb {
 bool DistAvailable();
 
 // Registry factories; without PETSc they throw std::invalid_argument. Backend option
-// `petsc_options` (the CLI's --petsc-options), applied over the defaults (dist_steps.h). Each
-// split of the body's elements over the processes goes to the config's element_split.
+// `petsc_options` (the CLI's --petsc-options), applied over the defaults (petsc_dist_adapter.h).
+// Each split of the body's elements over the processes goes to the config's element_split.
 std::unique_ptr<Formulation> MakeDistImplicitFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistNonsmoothFb(const FormulationConfig& config);
 std::unique_ptr<Formulation> MakeDistActiveSet(const FormulationConfig& config);

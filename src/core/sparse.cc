@@ -147,4 +147,18 @@ void ScatterBlock(const SpMat& block, double scale, const std::vector<int>& slot
   }
 }
 
+void CheckSquare(const SpMat& a, const std::string& who) {
+  if (a.rows() != a.cols()) {
+    throw std::invalid_argument(who + ": Factorize needs a square matrix, got " +
+                                std::to_string(a.rows()) + " x " + std::to_string(a.cols()));
+  }
+}
+
+const SpMat& Compressed(const SpMat& a, SpMat* scratch) {
+  if (a.isCompressed()) return a;
+  *scratch = a;
+  scratch->makeCompressed();
+  return *scratch;
+}
+
 }  // namespace cb

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -51,5 +52,13 @@ void AppendBlockEntries(const SpMat& block, int row_offset, int col_offset, bool
 // block must have the pattern it had when AppendBlockEntries was called.
 void ScatterBlock(const SpMat& block, double scale, const std::vector<int>& slots,
                   std::size_t first, SpMat* target);
+
+// What every factorisation checks of its matrix first: `a` is square (else
+// std::invalid_argument, naming `who`).
+void CheckSquare(const SpMat& a, const std::string& who);
+
+// `a` in the standard compressed arrays the factorisations read: `a` itself when compressed,
+// else its copy made in `scratch` (rare: a caller that inserted without makeCompressed).
+const SpMat& Compressed(const SpMat& a, SpMat* scratch);
 
 }  // namespace cb

@@ -49,22 +49,13 @@ class CondensedCholeskySolver final : public LinearSolver {
   }
 
   bool Factorize(const SpMat& a) override {
-    if (a.rows() != a.cols()) {
-      throw std::invalid_argument("cholmod: Factorize needs a square matrix, got " +
-                                  std::to_string(a.rows()) + " x " + std::to_string(a.cols()));
-    }
+    CheckSquare(a, "cholmod");
     factorized_ = false;
     use_fallback_ = false;
     // Small systems go to the LU: there its refactorisation beats the condensation's fixed
     // costs (docs/linear-solvers.md, "cholmod").
     if (!has_structure_ || structure_.d < kMinCondensedSize) return FallbackFactorize(a);
-    const SpMat* source = &a;
-    if (!a.isCompressed()) {
-      uncompressed_scratch_ = a;
-      uncompressed_scratch_.makeCompressed();
-      source = &uncompressed_scratch_;
-    }
-    const SpMat& m = *source;
+    const SpMat& m = Compressed(a, &uncompressed_scratch_);
     if (!AllFinite(m.valuePtr(), m.nonZeros())) {
       message_ = "cholmod: matrix has a non-finite entry";
       return false;

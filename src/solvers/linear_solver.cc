@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "core/finite.h"
+#include "core/sparse.h"
 #include "solvers/condensed_cholesky.h"
 
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
@@ -38,21 +39,10 @@ std::string Size(const SpMat& a) {
 class PatternTrackingSolver : public LinearSolver {
  public:
   bool Factorize(const SpMat& a) final {
-    if (a.rows() != a.cols()) {
-      throw std::invalid_argument(name() + ": Factorize needs a square matrix, got " +
-                                  std::to_string(a.rows()) + " x " + std::to_string(a.cols()));
-    }
+    CheckSquare(a, name());
     factorized_ = false;
     singular_ = false;
-    const SpMat* source = &a;
-    if (!a.isCompressed()) {
-      // Rare (a caller that inserted without makeCompressed); the comparison below and the
-      // backends need the standard compressed arrays.
-      uncompressed_scratch_ = a;
-      uncompressed_scratch_.makeCompressed();
-      source = &uncompressed_scratch_;
-    }
-    const SpMat& m = *source;
+    const SpMat& m = Compressed(a, &uncompressed_scratch_);  // the comparison below reads it
     const double* values = m.valuePtr();
     // The vectorised test first; the scan that names the entry runs only when it fails.
     if (!AllFinite(values, m.nonZeros())) {
@@ -156,6 +146,19 @@ class PatternTrackingSolver : public LinearSolver {
 
 // Eigen's supernodal SparseLU with a COLAMD column ordering (partial pivoting). It detects only
 // exactly zero pivots; a nearly singular matrix shows up as a huge or non-finite solution.
+// x = the factorisation's solve of b by one of Eigen's sparse solvers; false, with
+// "NAME: solve failed" in *why, when Eigen reports a failure.
+template <typename EigenSolver>
+bool EigenBackSolve(const EigenSolver& solver, const char* name, const Vec& b, Vec* x,
+                    std::string* why) {
+  *x = solver.solve(b);
+  if (solver.info() != Eigen::Success) {
+    *why = std::string(name) + ": solve failed";
+    return false;
+  }
+  return true;
+}
+
 class EigenSparseLuSolver final : public PatternTrackingSolver {
  public:
   std::string name() const override { return "sparse-lu"; }
@@ -176,12 +179,7 @@ class EigenSparseLuSolver final : public PatternTrackingSolver {
     return true;
   }
   bool BackSolve(const Vec& b, Vec* x, std::string* why) override {
-    *x = lu_.solve(b);
-    if (lu_.info() != Eigen::Success) {
-      *why = "sparse-lu: solve failed";
-      return false;
-    }
-    return true;
+    return EigenBackSolve(lu_, "sparse-lu", b, x, why);
   }
 
  private:
@@ -234,12 +232,7 @@ class UmfpackSolver final : public PatternTrackingSolver {
     return true;
   }
   bool BackSolve(const Vec& b, Vec* x, std::string* why) override {
-    *x = lu_.solve(b);
-    if (lu_.info() != Eigen::Success) {
-      *why = "umfpack: solve failed";
-      return false;
-    }
-    return true;
+    return EigenBackSolve(lu_, "umfpack", b, x, why);
   }
 
  private:

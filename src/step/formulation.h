@@ -20,7 +20,8 @@ const char* ToString(StartKind kind);
 // What the path driver hands a formulation as its start.
 //  kWarm: `du`, `dlambda` the predicted increment (the previous step's increment scaled to this
 //         step's size, or the tangent predictor on the first step), `r` the reactions of the
-//         known state; `warm_state` the previous step's StepResult::warm_state, if any.
+//         known state; `warm_state` the previous step's StepResult::warm_state, if any (the
+//         one channel for what a step takes from the previous one: src/step/warm_state.md).
 //  kCold: a fixed start that does not use the previous step (each formulation documents it).
 // `across_contact_change`: the prediction was bent at a contact change it runs across (the
 // corner prediction, src/path/corner_prediction.h); the answer lies just past a corner of the
@@ -66,7 +67,9 @@ struct StepResult {
   std::string repeats_disagreement;
   std::vector<IterationRecord> history;
   std::map<std::string, std::string> details;  // backend specifics (raw return codes, ...)
-  std::any warm_state;                         // what a warm start of the next step may reuse
+  // What a warm start of the next step may reuse, handed back through StartPoint::warm_state;
+  // a formulation keeps no such state in its members (src/step/warm_state.md).
+  std::any warm_state;
 };
 
 // Limits and hooks the harness sets for every formulation alike.

@@ -64,7 +64,7 @@ class DistributedSteps {
 
   const std::string& options() const { return options_; }
 
-  struct Objects;  // the PETSc objects and one solve's context (dist_steps.cc)
+  struct Objects;  // the PETSc objects and one solve's context (petsc_dist_adapter.cc)
 
   // The step on this process's contact-only model of step.model (a BodyContactModel; otherwise
   // std::invalid_argument; own_pairs_model.h), for the formulation's local equations of `size`

@@ -1,4 +1,4 @@
-#include "formulations/petsc_dist/dist_steps.h"
+#include "formulations/petsc_dist/petsc_dist_adapter.h"
 
 #include <petscsnes.h>
 
