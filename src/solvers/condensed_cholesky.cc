@@ -75,7 +75,14 @@ class CondensedCholeskySolver final : public LinearSolver {
     } else {
       std::copy(m.valuePtr(), m.valuePtr() + m.nonZeros(), jacobian_.valuePtr());
     }
-    if (!has_block_form_ || !FactorizeCondensed()) return FallbackFactorize(jacobian_);
+    const bool condensed = has_block_form_ && FactorizeCondensed();
+    if (!condensed && has_block_form_ && condensed_.interrupted()) {
+      // Abandoned on an interrupt (interruptible_cholmod.h): no fall-back to start.
+      message_ = "cholmod: factorisation of a " + std::to_string(m.rows()) + " x " +
+                 std::to_string(m.cols()) + " matrix abandoned on an interrupt";
+      return false;
+    }
+    if (!condensed) return FallbackFactorize(jacobian_);
     ++stats_.condensed_factorizations;
     factorized_ = true;
     message_.clear();
