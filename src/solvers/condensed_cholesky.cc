@@ -12,7 +12,9 @@
 #include <utility>
 
 #include "core/finite.h"
+#include "core/slow_work.h"
 #include "solvers/condensed_system.h"
+#include "solvers/interruptible_klu.h"
 #include "solvers/jacobian_blocks.h"
 
 namespace cb {
@@ -111,6 +113,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       ++stats_.fallback_solves;
       use_fallback_ = true;  // and for the later solves with this matrix
       ++stats_.fallback_factorizations;
+      ReportLargeFallback(jacobian_);
       if (!fallback_->Factorize(jacobian_) || !fallback_->Solve(rhs_, x)) {
         message_ = fallback_->message();
         return false;
@@ -138,10 +141,18 @@ class CondensedCholeskySolver final : public LinearSolver {
   bool FallbackFactorize(const SpMat& a) {
     use_fallback_ = true;
     ++stats_.fallback_factorizations;
+    ReportLargeFallback(a);
     const bool ok = fallback_->Factorize(a);
     factorized_ = ok;
     message_ = ok ? std::string() : fallback_->message();
     return ok;
+  }
+
+  // A fall-back factorisation of a large matrix may cost minutes (a 3-D system's fill): the
+  // program is told before it starts (core/slow_work.h).
+  void ReportLargeFallback(const SpMat& a) const {
+    if (a.nonZeros() < kInterruptibleKluMinNonZeros) return;
+    ReportSlowWork({name(), fallback_->name(), a.rows(), a.nonZeros()});
   }
 
   bool SamePattern(const SpMat& a) const {
