@@ -4,13 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "core/slow_work.h"
 #include "core/types.h"
 #include "solvers/equation_system.h"
+#include "solvers/interruptible_klu.h"
 #include "solvers/linear_solver.h"
 
 namespace cb {
@@ -170,6 +173,41 @@ TEST(CondensedCholeskyTest, IndefiniteStiffnessIsStillSolvedExactly) {
   }
 }
 #endif
+
+// A fall-back factorisation of a large matrix is reported before it starts (core/slow_work.h),
+// for the progress line to say so; one of a small matrix is not.
+std::vector<SlowWork> g_reported;
+
+TEST(CondensedCholeskyTest, ALargeFallbackIsReportedBeforeItStarts) {
+  SetSlowWorkListener([](const SlowWork& work) { g_reported.push_back(work); });
+  const auto banded = [](int n) {
+    // Diagonally dominant, 21 entries a column: the LU (without structure) factorises it.
+    std::vector<Eigen::Triplet<double>> e;
+    for (int j = 0; j < n; ++j) {
+      for (int i = std::max(0, j - 10); i <= std::min(n - 1, j + 10); ++i) {
+        e.emplace_back(i, j, i == j ? 30.0 : -1.0);
+      }
+    }
+    SpMat a(n, n);
+    a.setFromTriplets(e.begin(), e.end());
+    a.makeCompressed();
+    return a;
+  };
+  auto cholmod = MakeLinearSolver("cholmod");
+  g_reported.clear();
+  const SpMat small = banded(1000);
+  ASSERT_TRUE(cholmod->Factorize(small)) << cholmod->message();
+  EXPECT_TRUE(g_reported.empty());
+  const SpMat large = banded(12000);
+  ASSERT_GE(large.nonZeros(), kInterruptibleKluMinNonZeros);
+  ASSERT_TRUE(cholmod->Factorize(large)) << cholmod->message();
+  SetSlowWorkListener(nullptr);
+  ASSERT_EQ(g_reported.size(), 1u);
+  EXPECT_EQ(g_reported[0].from, "cholmod");
+  EXPECT_EQ(g_reported[0].to, "klu");
+  EXPECT_EQ(g_reported[0].rows, 12000);
+  EXPECT_EQ(g_reported[0].nonzeros, large.nonZeros());
+}
 
 }  // namespace
 }  // namespace cb

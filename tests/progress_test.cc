@@ -19,6 +19,8 @@
 namespace {
 
 using cb::harness::ClockText;
+using cb::harness::LineText;
+using cb::harness::SlowWorkText;
 using cb::harness::TimeText;
 
 TEST(ProgressTest, ClockTextShowsMinutesAndSecondsThenHours) {
@@ -33,6 +35,65 @@ TEST(ProgressTest, TheTimeLeftIsTheElapsedTimePerStepTimesTheStepsLeft) {
   // Nothing done yet, or everything: no estimate.
   EXPECT_EQ(TimeText(10.0, 0, 8), "elapsed 0:10");
   EXPECT_EQ(TimeText(10.0, 8, 8), "elapsed 0:10");
+}
+
+TEST(ProgressTest, TheLineCarriesANoticeOnlyWhenThereIsOne) {
+  EXPECT_EQ(LineText("step 2/8", 10.0, 2, 8, ""), "\rstep 2/8  elapsed 0:10, left ~0:30\x1b[K");
+  const std::string line = LineText("step 2/8", 10.0, 2, 8, "slow");
+  EXPECT_EQ(line.rfind("\rstep 2/8  elapsed 0:10, left ~0:30", 0), 0u) << line;
+  EXPECT_NE(line.find("slow"), std::string::npos) << line;
+  EXPECT_EQ(line.rfind("\x1b[K"), line.size() - 3) << line;
+}
+
+TEST(ProgressTest, AFallBackNoticeNamesBothSolversAndTheSize) {
+  const std::string text = SlowWorkText({"cholmod", "klu", 14739, 1200000});
+  EXPECT_NE(text.find("cholmod"), std::string::npos) << text;
+  EXPECT_NE(text.find("klu"), std::string::npos) << text;
+  EXPECT_NE(text.find("14739 x 14739"), std::string::npos) << text;
+  EXPECT_NE(text.find("minutes"), std::string::npos) << text;
+}
+
+// Off a terminal a reported fall-back shows nothing, as the rest of the line.
+TEST(ProgressTest, OffATerminalAReportedFallbackShowsNothing) {
+  std::FILE* file = std::tmpfile();
+  ASSERT_NE(file, nullptr);
+  {
+    cb::harness::ProgressLine line(file);
+    line.ShowSlowWork();
+    line.Update("step 1/2", 0, 2);
+    cb::ReportSlowWork({"cholmod", "klu", 14739, 1200000});
+  }
+  cb::ReportSlowWork({"cholmod", "klu", 1, 1});  // the line is gone: nothing listens
+  EXPECT_EQ(std::ftell(file), 0L);
+  std::fclose(file);
+}
+
+// On a terminal it is shown after the last text, until the next Update.
+TEST(ProgressTest, OnATerminalAReportedFallbackIsShownAfterTheLastText) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(grantpt(master), 0);
+  ASSERT_EQ(unlockpt(master), 0);
+  std::FILE* terminal = std::fopen(ptsname(master), "w");
+  ASSERT_NE(terminal, nullptr);
+  {
+    cb::harness::ProgressLine line(terminal);
+    line.ShowSlowWork();
+    line.Update("step 1/2", 0, 2);
+    cb::ReportSlowWork({"cholmod", "klu", 14739, 1200000});
+  }
+  std::fclose(terminal);
+  std::string text;
+  char buffer[4096];
+  for (ssize_t n; (n = read(master, buffer, sizeof buffer)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(n));
+    if (text.find('\n') != std::string::npos) break;  // End()'s newline: all is here
+  }
+  close(master);
+  const std::string notice = SlowWorkText({"cholmod", "klu", 14739, 1200000});
+  const std::size_t last = text.rfind("\rstep 1/2  elapsed ");
+  ASSERT_NE(last, std::string::npos) << text;
+  EXPECT_NE(text.find(notice, last), std::string::npos) << text;
 }
 
 struct Terminal {

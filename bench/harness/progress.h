@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <string>
 
+#include "core/slow_work.h"
+
 namespace cb::harness {
 
 // "1:05" (minutes:seconds) or "2:03:09" (hours:minutes:seconds) of a non-negative duration.
@@ -16,11 +18,21 @@ std::string ClockText(double seconds);
 // as the elapsed time per step done times the steps left.
 std::string TimeText(double elapsed_s, int done, int total);
 
+// The line as shown: `text`, the times after `done` of `total` steps, and `notice` when not
+// empty; "\r" first and erase-to-end-of-line last, so a shorter line leaves nothing behind.
+std::string LineText(const std::string& text, double elapsed_s, int done, int total,
+                     const std::string& notice);
+
+// The notice for a fall-back the library reports (core/slow_work.h) in a 3-D problem, whose
+// direct factorisation fills O(d sqrt(s)) entries (docs/hardening.md, Memory): KLU took ~90 s
+// a factorisation on hertz-3d, minutes an iteration.
+std::string SlowWorkText(const SlowWork& work);
+
 class ProgressLine {
  public:
   // Shown on `stream` only when it is a terminal.
   explicit ProgressLine(std::FILE* stream = stderr);
-  ~ProgressLine() { End(); }
+  ~ProgressLine();
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
@@ -29,9 +41,16 @@ class ProgressLine {
   void Update(const std::string& text, int done, int total);
   // Ends a shown line with a newline, so that the next message starts a line of its own.
   void End();
+  // From now on until this line ends its life, shows the library's reports of slow work
+  // (core/slow_work.h) after the last text, until the next Update.
+  void ShowSlowWork();
+  // Rewrites the line with the last text and `notice` after it.
+  void Notice(const std::string& notice);
 
  private:
   std::FILE* stream_;
+  std::string text_;  // of the last Update
+  int done_ = 0, total_ = 0;
   bool enabled_ = false;
   bool open_ = false;  // a line is shown and not yet ended
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();

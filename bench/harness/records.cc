@@ -17,7 +17,10 @@ RecordFiles::RecordFiles(const RecordTarget& target)
 
 RunRecorder::RunRecorder(RecordFiles* files, const Problem& problem, RunLabel label,
                          int total_steps)
-    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {}
+    : files_(files), problem_(problem), label_(std::move(label)), total_steps_(total_steps) {
+  // A fall-back to a direct LU costs minutes only where the fill is a 3-D mesh's (SlowWorkText).
+  if (problem_.body && problem_.body->body().dim() == 3) progress_.ShowSlowWork();
+}
 
 double RunRecorder::StepFclibError(const State& state) const {
   const bool lcp = dynamic_cast<const ComplementarityModel*>(problem_.model.get()) != nullptr;

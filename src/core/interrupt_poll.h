@@ -1,7 +1,7 @@
 // Whether the program asked the work under way to stop (SIGINT, SIGTERM), for long work inside
 // the library that cannot wait for the path driver's poll between iterations
 // (SolveControls::interrupted): a direct factorisation of a large 3-D system can take minutes
-// (solvers/interruptible_factor.h). The program installs the poll; without one nothing is ever
+// (core/abandonable_work.h). The program installs the poll; without one nothing is ever
 // interrupted.
 #pragma once
 

@@ -8,6 +8,8 @@
 
 #include <cholmod.h>
 
+#include <utility>
+
 #include "core/types.h"
 
 namespace cb {
@@ -25,6 +27,8 @@ class CholmodFactor {
   CholmodFactor& operator=(const CholmodFactor&) = delete;
 
   void reset();
+  // Gives up the factor without freeing it (its new owner frees it).
+  cholmod_factor* release() { return std::exchange(factor_, nullptr); }
   cholmod_factor* get() const { return factor_; }
   cholmod_factor* operator->() const { return factor_; }
   explicit operator bool() const { return factor_ != nullptr; }

@@ -12,8 +12,10 @@
 #include <utility>
 
 #include "core/finite.h"
+#include "core/slow_work.h"
 #include "core/sparse.h"
 #include "solvers/condensed_system.h"
+#include "solvers/interruptible_klu.h"
 #include "solvers/jacobian_blocks.h"
 
 namespace cb {
@@ -67,7 +69,14 @@ class CondensedCholeskySolver final : public LinearSolver {
     } else {
       std::copy(m.valuePtr(), m.valuePtr() + m.nonZeros(), jacobian_.valuePtr());
     }
-    if (!has_block_form_ || !FactorizeCondensed()) return FallbackFactorize(jacobian_);
+    const bool condensed = has_block_form_ && FactorizeCondensed();
+    if (!condensed && has_block_form_ && condensed_.interrupted()) {
+      // Abandoned on an interrupt (interruptible_cholmod.h): no fall-back to start.
+      message_ = "cholmod: factorisation of a " + std::to_string(m.rows()) + " x " +
+                 std::to_string(m.cols()) + " matrix abandoned on an interrupt";
+      return false;
+    }
+    if (!condensed) return FallbackFactorize(jacobian_);
     ++stats_.condensed_factorizations;
     factorized_ = true;
     message_.clear();
@@ -96,6 +105,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       ++stats_.fallback_solves;
       use_fallback_ = true;  // and for the later solves with this matrix
       ++stats_.fallback_factorizations;
+      ReportLargeFallback(jacobian_);
       if (!fallback_->Factorize(jacobian_) || !fallback_->Solve(rhs_, x)) {
         message_ = fallback_->message();
         return false;
@@ -123,10 +133,18 @@ class CondensedCholeskySolver final : public LinearSolver {
   bool FallbackFactorize(const SpMat& a) {
     use_fallback_ = true;
     ++stats_.fallback_factorizations;
+    ReportLargeFallback(a);
     const bool ok = fallback_->Factorize(a);
     factorized_ = ok;
     message_ = ok ? std::string() : fallback_->message();
     return ok;
+  }
+
+  // A fall-back factorisation of a large matrix may cost minutes (a 3-D system's fill): the
+  // program is told before it starts (core/slow_work.h).
+  void ReportLargeFallback(const SpMat& a) const {
+    if (a.nonZeros() < kInterruptibleKluMinNonZeros) return;
+    ReportSlowWork({name(), fallback_->name(), a.rows(), a.nonZeros()});
   }
 
   bool SamePattern(const SpMat& a) const {

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/huge_pages.h"
+#include "solvers/interruptible_cholmod.h"
 
 namespace cb {
 namespace {
@@ -68,6 +69,7 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
 
 bool CondensedSystem::Factorize(const double* values, double coupling) {
   contact_block_active_ = false;
+  interrupted_ = false;
   if (!CondensePairs(values, coupling)) return false;
   contact_block_active_ = contact_block_.possible() &&
                           contact_block_.Factorize(blocks_, values, pair_spring_, kc_slots_, &kc_);
@@ -136,13 +138,14 @@ bool CondensedSystem::FactorizeWhole(const double* values) {
       }
     }
   }
-  cholmod_sparse view = LowerTriangleView(kc_);
   if (!whole_factor_) {
+    // (Again after an interrupt abandoned the factor: interruptible_cholmod.h.)
     ++num_analyses_;
+    cholmod_sparse view = LowerTriangleView(kc_);
     whole_factor_ = cholmod_.Analyse(&view);
     if (!whole_factor_) return false;
   }
-  return cholmod_.Factorize(&view, whole_factor_);
+  return FactorizeInterruptibly(&cholmod_, &kc_, &whole_factor_, &interrupted_);
 }
 
 bool CondensedSystem::FactorizeBorder(const double* values) {

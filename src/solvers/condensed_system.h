@@ -48,6 +48,9 @@ class CondensedSystem {
   int capped_pairs() const { return capped_pairs_; }
   bool used_contact_block() const { return contact_block_active_; }
   int num_analyses() const { return num_analyses_ + contact_block_.num_analyses(); }
+  // Whether the last Factorize failed because an interrupt abandoned the factorisation of Kc
+  // whole (interruptible_cholmod.h).
+  bool interrupted() const { return interrupted_; }
 
  private:
   // w, E, Da / E and Db~ per pair; false where the condensation does not apply.
@@ -76,6 +79,7 @@ class CondensedSystem {
   ContactBlockFactor contact_block_{&cholmod_};
   bool contact_block_active_ = false;  // the last Factorize used the contact-block update
   int num_analyses_ = 0;               // of Kc whole
+  bool interrupted_ = false;           // the last Factorize was abandoned on an interrupt
 
   // The pairs at the last Factorize.
   std::vector<double> pair_spring_;  // w

@@ -1,13 +1,9 @@
 // KLU's full numeric factorisation (klu_factor) of a large matrix, interruptible. KLU has no
 // hook to stop it, and on a 3-D system it can take minutes (hertz-3d with E >= 1e20 falls back
 // from the condensed Cholesky to KLU at ~90 s a factorisation, and a SIGTERM took 73 s to act;
-// issue 30). So the factorisation runs on a worker thread that owns everything it touches: a
-// copy of the matrix's arrays, the symbolic analysis (handed over), a copy of KLU's settings.
-// The calling thread waits, polling InterruptPolled() (core/interrupt_poll.h) every 0.1 s; on
-// an interrupt it abandons the worker and returns at once. The abandoned worker touches nothing
-// the caller can free, frees its own objects when it ends, and otherwise dies with the process:
-// it only computes and allocates, so the process may exit under it. Checking a flag inside KLU
-// would need a patched KLU; cancelling a thread inside it would leak or corrupt its allocator.
+// issue 30). So the factorisation runs on a worker thread the caller can abandon
+// (core/abandonable_work.h), which owns everything it touches: a copy of the matrix's arrays,
+// the symbolic analysis (handed over), a copy of KLU's settings.
 #pragma once
 
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE

@@ -1,0 +1,55 @@
+#include "solvers/interruptible_cholmod.h"
+
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+
+#include <memory>
+#include <vector>
+
+#include "core/abandonable_work.h"
+
+namespace cb {
+
+namespace {
+
+// What the worker owns: CHOLMOD's state (declared first: it outlives the factor), copies of the
+// matrix's arrays, the factor handed over, and whether it factorised.
+struct Job {
+  Cholmod cholmod;
+  SpMat lower;
+  CholmodFactor factor;
+  bool factorized = false;
+};
+
+}  // namespace
+
+bool FactorizeInterruptibly(Cholmod* cholmod, SpMat* lower, CholmodFactor* factor,
+                            bool* interrupted) {
+  *interrupted = false;
+  if (lower->nonZeros() < kInterruptibleCholmodMinNonZeros) {
+    cholmod_sparse view = LowerTriangleView(*lower);
+    return cholmod->Factorize(&view, *factor);
+  }
+  auto job = std::make_shared<Job>();
+  job->lower = *lower;
+  job->factor = CholmodFactor(factor->release(), job->cholmod.common());
+  const WorkEnd end = RunAbandonably(
+      kInterruptibleCholmodThreadName,
+      [job] {
+        cholmod_sparse view = LowerTriangleView(job->lower);
+        job->factorized = job->cholmod.Factorize(&view, job->factor);
+      },
+      [job] { job->factor.reset(); });  // nobody takes it
+  if (end == WorkEnd::kInterruptedBeforeStart) {
+    *factor = CholmodFactor(job->factor.release(), cholmod->common());
+  }
+  if (end != WorkEnd::kFinished) {
+    *interrupted = true;
+    return false;
+  }
+  *factor = CholmodFactor(job->factor.release(), cholmod->common());
+  return job->factorized;
+}
+
+}  // namespace cb
+
+#endif  // CONTACTBENCH_HAVE_SUITESPARSE
