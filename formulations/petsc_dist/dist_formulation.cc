@@ -23,9 +23,10 @@ bool IsVi(const std::string& snes_type) { return snes_type != "newtonls"; }
 // holds the body (so the coarsest level is solved by SVD, a pseudo-inverse), and MUMPS on the
 // small selfp Schur complement of the contact rows. Its relative tolerance only paces Newton
 // (the stopping test ||F||_inf <= residual_tol is on the true residual); 1e-8 keeps the direct
-// solve's Newton iterations. MUMPS orders with PORD (ICNTL(7) = 4): the METIS and SCOTCH
+// solve's Newton iterations. MUMPS orders with AMD (ICNTL(7) = 0): the METIS and SCOTCH
 // orderings of this build make the factor, and so the answer's last digits, differ from one run
-// to the next (docs/findings.md, "MUMPS's ordering and reproducibility").
+// to the next, and PORD stops the process on the smallest systems (docs/findings.md, "MUMPS's
+// ordering and reproducibility").
 std::string LinearOptions(const std::string& linear) {
   if (linear == "amg") {
     return " -ksp_type fgmres -ksp_gmres_restart 100 -ksp_rtol 1e-8 -ksp_max_it 1000"
@@ -35,9 +36,9 @@ std::string LinearOptions(const std::string& linear) {
            " -al_fieldsplit_0_mg_coarse_sub_pc_type svd"
            " -al_fieldsplit_0_mg_coarse_sub_pc_svd_zero_sing 1e-8"
            " -al_fieldsplit_1_ksp_type preonly -al_fieldsplit_1_pc_type lu"
-           " -al_fieldsplit_1_pc_factor_mat_solver_type mumps -al_fieldsplit_1_mat_mumps_icntl_7 4";
+           " -al_fieldsplit_1_pc_factor_mat_solver_type mumps -al_fieldsplit_1_mat_mumps_icntl_7 0";
   }
-  return " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps -mat_mumps_icntl_7 4";
+  return " -ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps -mat_mumps_icntl_7 0";
 }
 
 // The defaults of petsc_dist_adapter.h for a SNES type.
