@@ -24,7 +24,7 @@ Outcome RunWithLimit(const std::string& limit, const std::string& arguments) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("contactbench_memory_estimate_" + test + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
-  const Outcome out = cb::testing_support::RunContactbench(
+  Outcome out = cb::testing_support::RunContactbench(
       "run " + arguments + " --out " + dir.string(), "2>&1",
       "timeout -s KILL 60 env" + (limit.empty() ? "" : " CONTACTBENCH_MEMORY_LIMIT=" + limit));
   EXPECT_FALSE(std::filesystem::exists(dir / "steps.csv")) << "work started: " << arguments;
