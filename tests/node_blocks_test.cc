@@ -63,6 +63,58 @@ TEST(NodeBlocksTest, TheRigidModesAreAnnihilatedByAFreeBodysStiffness) {
   MatNullSpaceDestroy(&space);
 }
 
+// The step system: K, then `extra` rows coupled to a few du columns (as gap rows are), the
+// coupled columns moved by `shift` so that two shifts give two patterns.
+::Mat StepSystem(const SpMat& k, PetscInt extra, PetscInt shift) {
+  const PetscInt d = k.rows(), size = d + extra;
+  ::Mat reduced = nullptr;
+  MatCreateSeqAIJ(PETSC_COMM_SELF, size, size, 96, nullptr, &reduced);  // K: 81 a row at most
+  for (int col = 0; col < k.outerSize(); ++col) {
+    for (SpMat::InnerIterator it(k, col); it; ++it) {
+      MatSetValue(reduced, it.row(), it.col(), it.value(), INSERT_VALUES);
+    }
+  }
+  for (PetscInt e = 0; e < extra; ++e) {
+    const PetscInt coupled = 2 * e + 1 + shift;
+    MatSetValue(reduced, d + e, coupled, 1.0 + e, INSERT_VALUES);
+    MatSetValue(reduced, coupled, d + e, -0.5, INSERT_VALUES);
+    MatSetValue(reduced, d + e, d + e, 3.0, INSERT_VALUES);
+  }
+  MatAssemblyBegin(reduced, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(reduced, MAT_FINAL_ASSEMBLY);
+  return reduced;
+}
+
+// The largest difference between the step system's product with a random x and the blocked
+// matrix's with x's blocked image, brought back, relative to the product's largest entry.
+double ActionDifference(const NodeBlocks& blocks, ::Mat reduced, ::Mat blocked, ::Vec* by) {
+  PetscInt size = 0;
+  MatGetSize(reduced, &size, nullptr);
+  ::Vec x = nullptr, y = nullptr, bx = nullptr, back = nullptr;
+  MatCreateVecs(reduced, &x, &y);
+  VecDuplicate(y, &back);
+  blocks.CreateBlockedVec(&bx);
+  VecDuplicate(bx, by);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (PetscInt i = 0; i < size; ++i) VecSetValue(x, i, uniform(rng), INSERT_VALUES);
+  VecAssemblyBegin(x);
+  VecAssemblyEnd(x);
+  MatMult(reduced, x, y);
+  blocks.ToBlocked(x, bx);
+  MatMult(blocked, bx, *by);
+  blocks.ToReduced(*by, back);
+  const Vec expected = ToEigen(y), got = ToEigen(back);
+  for (::Vec* v : {&x, &y, &bx, &back}) VecDestroy(v);
+  return (expected - got).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff();
+}
+
+PetscReal StoredEntries(::Mat m) {
+  MatInfo info;
+  MatGetInfo(m, MAT_LOCAL, &info);
+  return info.nz_used;
+}
+
 TEST(NodeBlocksTest, TheBlockedMatrixActsOnTheFreeRowsAsTheStepSystems) {
   StartPetsc();
   const SolidHex8 free_body = Box();
@@ -71,56 +123,35 @@ TEST(NodeBlocksTest, TheBlockedMatrixActsOnTheFreeRowsAsTheStepSystems) {
   fixed[3 * 7] = fixed[3 * 7 + 1] = fixed[3 * 7 + 2] = true;  // a fully supported node
   const SolidHex8 body = Box(fixed);
   const PetscInt d = body.num_dofs(), extra = 4, size = d + extra;
+  const PetscInt supported = 3 * body.num_nodes() - d;
   SpMat k;
   body.Stiffness(Vec::Zero(d), &k);
-  // The step system: K, then `extra` rows coupled to a few du columns (as gap rows are).
-  ::Mat reduced = nullptr;
-  MatCreateSeqAIJ(PETSC_COMM_SELF, size, size, 64, nullptr, &reduced);
-  for (int col = 0; col < k.outerSize(); ++col) {
-    for (SpMat::InnerIterator it(k, col); it; ++it) {
-      MatSetValue(reduced, it.row(), it.col(), it.value(), INSERT_VALUES);
-    }
-  }
-  for (PetscInt e = 0; e < extra; ++e) {
-    MatSetValue(reduced, d + e, 2 * e + 1, 1.0 + e, INSERT_VALUES);
-    MatSetValue(reduced, 2 * e + 1, d + e, -0.5, INSERT_VALUES);
-    MatSetValue(reduced, d + e, d + e, 3.0, INSERT_VALUES);
-  }
-  MatAssemblyBegin(reduced, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(reduced, MAT_FINAL_ASSEMBLY);
   const NodeBlocks blocks(PETSC_COMM_WORLD, body, size, 0, size);
   ::Mat blocked = nullptr;
-  ASSERT_EQ(blocks.Expand(reduced, &blocked), 0);
-  PetscInt rows = 0;
-  MatGetSize(blocked, &rows, nullptr);
-  EXPECT_EQ(rows, 3 * body.num_nodes() + extra);
-  ::Vec x = nullptr, y = nullptr, bx = nullptr, by = nullptr, back = nullptr;
-  MatCreateVecs(reduced, &x, &y);
-  VecDuplicate(y, &back);
-  blocks.CreateBlockedVec(&bx);
-  VecDuplicate(bx, &by);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (PetscInt i = 0; i < size; ++i) VecSetValue(x, i, uniform(rng), INSERT_VALUES);
-  VecAssemblyBegin(x);
-  VecAssemblyEnd(x);
-  MatMult(reduced, x, y);
-  blocks.ToBlocked(x, bx);
-  MatMult(blocked, bx, by);
-  blocks.ToReduced(by, back);
-  const Vec expected = ToEigen(y), got = ToEigen(back);
-  EXPECT_LT((expected - got).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
-  // A supported row is an identity row: zero where x is zero-extended.
-  const Vec blocked_y = ToEigen(by);
-  EXPECT_EQ(blocked_y[3 * 7], 0.0);
-  // The blocked matrix holds each supported component's row alone on its diagonal.
-  PetscScalar diagonal = 0.0;
-  const PetscInt row = 3 * 7 + 1;
-  MatGetValues(blocked, 1, &row, 1, &row, &diagonal);
-  EXPECT_GT(diagonal, 0.0);
-  for (::Vec* v : {&x, &y, &bx, &by, &back}) VecDestroy(v);
+  // Two step systems of different patterns expanded into the same blocked matrix, as at two
+  // Newton iterations whose closed pairs differ: each time it acts as the system it came from
+  // and holds that system's entries and the supported rows' alone.
+  for (const PetscInt shift : {0, 6}) {
+    ::Mat reduced = StepSystem(k, extra, shift);
+    ASSERT_EQ(blocks.Expand(reduced, &blocked), 0);
+    PetscInt rows = 0;
+    MatGetSize(blocked, &rows, nullptr);
+    EXPECT_EQ(rows, 3 * body.num_nodes() + extra);
+    EXPECT_EQ(StoredEntries(blocked), StoredEntries(reduced) + static_cast<PetscReal>(supported))
+        << "shift " << shift;
+    ::Vec by = nullptr;
+    EXPECT_LT(ActionDifference(blocks, reduced, blocked, &by), 1e-12) << "shift " << shift;
+    // A supported row is an identity row: zero where x is zero-extended.
+    EXPECT_EQ(ToEigen(by)[3 * 7], 0.0);
+    // The blocked matrix holds each supported component's row alone on its diagonal.
+    PetscScalar diagonal = 0.0;
+    const PetscInt row = 3 * 7 + 1;
+    MatGetValues(blocked, 1, &row, 1, &row, &diagonal);
+    EXPECT_GT(diagonal, 0.0);
+    VecDestroy(&by);
+    MatDestroy(&reduced);
+  }
   MatDestroy(&blocked);
-  MatDestroy(&reduced);
 }
 
 }  // namespace

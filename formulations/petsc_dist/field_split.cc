@@ -290,9 +290,9 @@ PetscErrorCode SetUpAugmented(PC pc) {
   ::Mat amat = nullptr, pmat = nullptr;
   PetscCall(PCGetOperators(pc, &amat, &pmat));
   PetscCall(MakeT(pmat, a));
-  PetscCall(MatDestroy(&a->tj));
   PetscCall(MatMatMult(a->t, pmat, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &a->tj));
   PetscCall(a->blocks->Expand(a->tj, &a->blocked_tj));
+  PetscCall(MatDestroy(&a->tj));  // only its blocked copy is solved with
   PetscCall(PCSetOperators(a->inner, a->blocked_tj, a->blocked_tj));
   PetscCall(PCSetUp(a->inner));
   return 0;

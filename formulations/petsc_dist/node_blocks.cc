@@ -88,47 +88,91 @@ PetscErrorCode NodeBlocks::CreateBlockedVec(::Vec* v) const {
   return 0;
 }
 
-PetscErrorCode NodeBlocks::Expand(::Mat reduced, ::Mat* blocked) const {
-  std::vector<PetscInt> rows, cols;
-  std::vector<PetscScalar> values;
+// The mean |diagonal| of the du rows of `reduced`, the supported rows' scale, so that they look
+// like the others to the smoother's eigenvalue estimate. Collective.
+PetscErrorCode NodeBlocks::SupportedRowScale(::Mat reduced, PetscScalar* scale) const {
   PetscReal diagonal_sum = 0.0;
+  for (PetscInt i = first_; i < std::min(last_, d_); ++i) {
+    PetscScalar value = 0.0;
+    PetscCall(MatGetValue(reduced, i, i, &value));
+    diagonal_sum += std::abs(value);
+  }
+  PetscReal sum = 0.0;
+  PetscCallMPI(MPI_Allreduce(&diagonal_sum, &sum, 1, MPIU_REAL, MPIU_SUM, comm_));
+  *scale = d_ > 0 && sum > 0.0 ? sum / static_cast<PetscReal>(d_) : 1.0;
+  return 0;
+}
+
+// Preallocates *blocked for `reduced`'s pattern, its storage replaced (PETSc frees the previous
+// one), so that the blocked copy is never held twice. A blocked row this process owns whose
+// reduced row another process owns (a node whose dofs straddle the ownership boundary) gets the
+// widest local row's counts.
+PetscErrorCode NodeBlocks::Preallocate(::Mat reduced, ::Mat blocked) const {
+  PetscInt own_first = 0, own_last = 0;
+  PetscCall(VecGetOwnershipRange(blocked_template_, &own_first, &own_last));
+  const auto local = static_cast<std::size_t>(own_last - own_first);
+  std::vector<PetscInt> diagonal(local, -1), off(local, 0);
+  PetscInt widest = 1;
+  for (PetscInt i = first_; i < last_; ++i) {
+    PetscInt count = 0, in_block = 0;
+    const PetscInt* c = nullptr;
+    PetscCall(MatGetRow(reduced, i, &count, &c, nullptr));
+    for (PetscInt k = 0; k < count; ++k) {
+      const PetscInt column = Blocked(c[k]);
+      in_block += column >= own_first && column < own_last ? 1 : 0;
+    }
+    widest = std::max(widest, count);
+    const PetscInt row = Blocked(i);
+    if (row >= own_first && row < own_last) {
+      diagonal[static_cast<std::size_t>(row - own_first)] = in_block;
+      off[static_cast<std::size_t>(row - own_first)] = count - in_block;
+    }
+    PetscCall(MatRestoreRow(reduced, i, &count, &c, nullptr));  // which zeroes count
+  }
+  for (std::size_t r = 0; r < local; ++r) {
+    if (diagonal[r] >= 0) continue;
+    diagonal[r] = std::min<PetscInt>(widest, own_last - own_first);  // supported or straddling
+    off[r] = widest;
+  }
+  PetscCall(MatXAIJSetPreallocation(blocked, 1, diagonal.data(), off.data(), nullptr, nullptr));
+  PetscCall(MatSetOption(blocked, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  return 0;
+}
+
+PetscErrorCode NodeBlocks::Expand(::Mat reduced, ::Mat* blocked) const {
+  PetscScalar scale = 1.0;
+  PetscCall(SupportedRowScale(reduced, &scale));
+  if (*blocked == nullptr) {
+    PetscInt local = 0, global = 0;
+    PetscCall(VecGetLocalSize(blocked_template_, &local));
+    PetscCall(VecGetSize(blocked_template_, &global));
+    PetscCall(MatCreate(comm_, blocked));
+    PetscCall(MatSetSizes(*blocked, local, local, global, global));
+    PetscCall(MatSetType(*blocked, MATAIJ));
+  }
+  PetscCall(Preallocate(reduced, *blocked));
+  std::vector<PetscInt> columns;
   for (PetscInt i = first_; i < last_; ++i) {
     PetscInt count = 0;
     const PetscInt* c = nullptr;
     const PetscScalar* v = nullptr;
     PetscCall(MatGetRow(reduced, i, &count, &c, &v));
-    for (PetscInt k = 0; k < count; ++k) {
-      rows.push_back(Blocked(i));
-      cols.push_back(Blocked(c[k]));
-      values.push_back(v[k]);
-      if (i < d_ && c[k] == i) diagonal_sum += std::abs(v[k]);
-    }
+    columns.resize(static_cast<std::size_t>(count));
+    for (PetscInt k = 0; k < count; ++k) columns[static_cast<std::size_t>(k)] = Blocked(c[k]);
+    const PetscInt row = Blocked(i);
+    PetscCall(MatSetValues(*blocked, 1, &row, count, columns.data(), v, INSERT_VALUES));
     PetscCall(MatRestoreRow(reduced, i, &count, &c, &v));
   }
-  // The supported rows' scale: the mean stiffness diagonal, so that they look like the others
-  // to the smoother's eigenvalue estimate.
-  PetscReal sum = 0.0;
-  PetscCallMPI(MPI_Allreduce(&diagonal_sum, &sum, 1, MPIU_REAL, MPIU_SUM, comm_));
-  const PetscScalar scale = d_ > 0 && sum > 0.0 ? sum / static_cast<PetscReal>(d_) : 1.0;
   const int dim = body_.dim();
   for (PetscInt node = node_first_; node < node_last_; ++node) {
     for (int c = 0; c < dim; ++c) {
       if (body_.dofs().dof(static_cast<int>(node), c) >= 0) continue;
-      rows.push_back(dim * node + c);
-      cols.push_back(dim * node + c);
-      values.push_back(scale);
+      const PetscInt row = dim * node + c;
+      PetscCall(MatSetValues(*blocked, 1, &row, 1, &row, &scale, INSERT_VALUES));
     }
   }
-  PetscCall(MatDestroy(blocked));
-  PetscInt local = 0, global = 0;
-  PetscCall(VecGetLocalSize(blocked_template_, &local));
-  PetscCall(VecGetSize(blocked_template_, &global));
-  PetscCall(MatCreate(comm_, blocked));
-  PetscCall(MatSetSizes(*blocked, local, local, global, global));
-  PetscCall(MatSetType(*blocked, MATAIJ));
-  PetscCall(MatSetPreallocationCOO(*blocked, static_cast<PetscCount>(rows.size()), rows.data(),
-                                   cols.data()));
-  PetscCall(MatSetValuesCOO(*blocked, values.data(), INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(*blocked, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*blocked, MAT_FINAL_ASSEMBLY));
   return 0;
 }
 

@@ -28,8 +28,9 @@ class NodeBlocks {
   NodeBlocks(const NodeBlocks&) = delete;
   NodeBlocks& operator=(const NodeBlocks&) = delete;
 
-  // The node-blocked matrix of `reduced` (that system's layout) into *blocked (destroyed first
-  // if set). Collective.
+  // The node-blocked matrix of `reduced` (that system's layout) into *blocked: created when
+  // null, else its storage replaced and refilled (one copy at a time, whatever the pattern).
+  // Collective.
   PetscErrorCode Expand(::Mat reduced, ::Mat* blocked) const;
   // A vector of the step system into the node-blocked layout (0 on the supported rows), and back.
   PetscErrorCode ToBlocked(::Vec reduced, ::Vec blocked) const;
@@ -52,6 +53,9 @@ class NodeBlocks {
   PetscErrorCode RigidModes(MatNullSpace* space) const;
 
  private:
+  PetscErrorCode SupportedRowScale(::Mat reduced, PetscScalar* scale) const;
+  PetscErrorCode Preallocate(::Mat reduced, ::Mat blocked) const;
+
   MPI_Comm comm_;
   const ElasticBody& body_;
   PetscInt d_ = 0, size_ = 0, first_ = 0, last_ = 0;
