@@ -110,7 +110,7 @@ MemoryEstimate EstimateOf(const RunArguments& a, double dofs, double pairs, int 
   } else if (dim == 3) {
     estimate.fill = DirectFill3d(dofs, separator_nodes);
   }
-  estimate.processes = LaunchedProcesses();
+  estimate.processes = LaunchedProcessCount();
   return estimate;
 }
 

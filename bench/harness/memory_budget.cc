@@ -99,16 +99,6 @@ double DirectFill3d(double dofs, double separator_nodes) {
   return dofs * std::sqrt(std::max(separator_nodes, 1.0));
 }
 
-double LaunchedProcesses() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
-    if (const char* value = std::getenv(name)) {
-      const double count = std::strtod(value, nullptr);
-      if (count >= 1.0 && count <= 1e6) return count;
-    }
-  }
-  return 1.0;
-}
-
 std::optional<MemoryLimit> AvailableMemory() {
   if (const char* forced = std::getenv("CONTACTBENCH_MEMORY_LIMIT")) {
     return MemoryLimit{std::strtod(forced, nullptr), "CONTACTBENCH_MEMORY_LIMIT"};

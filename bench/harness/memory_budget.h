@@ -49,10 +49,6 @@ constexpr double kExtraPerProcess = 0.5;
 // for an unstructured mesh of N nodes, a cube's N^(2/3).
 double DirectFill3d(double dofs, double separator_nodes);
 
-// The processes of the run as the launcher says (OMPI_COMM_WORLD_SIZE, PMI_SIZE), known
-// before MPI starts; 1 without a launcher.
-double LaunchedProcesses();
-
 // What the process may still take: the least of MemAvailable (/proc/meminfo), the memory
 // cgroup's limit less its usage, and RLIMIT_AS less the current virtual size. The variable
 // CONTACTBENCH_MEMORY_LIMIT (bytes) replaces them, for tests. Nothing when none is known.

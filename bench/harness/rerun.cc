@@ -2,7 +2,6 @@
 
 #include <contactbench_build_info.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +12,7 @@
 #include "harness/options.h"
 #include "harness/run_json.h"
 #include "harness/sha256.h"
+#include "parallel/processes.h"
 
 namespace cb::harness {
 
@@ -120,14 +120,6 @@ Json Field(const Json& run, const char* section, const char* key) {
   return v == s->end() ? Json() : *v;
 }
 
-// The processes this rerun is started with (an MPI launcher's size, else 1).
-int LaunchedProcesses() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
-    if (const char* size = std::getenv(name)) return std::atoi(size);
-  }
-  return 1;
-}
-
 void CompareBuild(const Json& run, std::vector<std::string>* differences) {
   Compare("version", run.value("version", Json()), CONTACTBENCH_VERSION, differences);
   Compare("commit", run.value("commit", Json()), CONTACTBENCH_COMMIT, differences);
@@ -144,9 +136,9 @@ void CompareBuild(const Json& run, std::vector<std::string>* differences) {
   }
   Compare("blas", run.value("blas", Json()), BlasDescription(LoadedBlas()), differences);
   const int processes = run.value("processes", 1);
-  if (processes != LaunchedProcesses()) {
+  if (processes != LaunchedProcessCount()) {
     differences->push_back("processes: recorded " + std::to_string(processes) + ", now " +
-                           std::to_string(LaunchedProcesses()) +
+                           std::to_string(LaunchedProcessCount()) +
                            " (start the rerun as the run was: mpirun -n " +
                            std::to_string(processes) + ")");
   }

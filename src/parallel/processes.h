@@ -18,6 +18,10 @@ int ProcessRank();
 int ProcessCount();
 // Whether the run has more than one process.
 bool Distributed();
+// The processes the run was launched with, as its launcher says (OMPI_COMM_WORLD_SIZE,
+// PMI_SIZE): known before MPI starts, for what is decided before (the memory estimate, a
+// rerun's check). 1 without a launcher or when its value is not a count of 1 to 1e6.
+int LaunchedProcessCount();
 
 // Collectives (every process calls them at the same point).
 // Whether `mine` holds on any process.
