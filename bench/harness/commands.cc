@@ -83,13 +83,23 @@ void PrepareOutput(const std::string& dir) {
 
 namespace {
 
-// Whether the run factorises directly: every formulation but a distributed one given
-// `linear=amg` (compare's formulations are taken as direct, the larger estimate).
-bool FactorisesDirectly(const RunArguments& a) {
+// The registry's entry of the run's formulation; null when it names none (refused later).
+const FormulationInfo* InfoOf(const RunArguments& a) {
   const auto& formulations = FormulationRegistry();
   const auto info = std::find_if(formulations.begin(), formulations.end(),
                                  [&](const FormulationInfo& f) { return f.name == a.formulation; });
-  if (info == formulations.end() || !info->distributed) return true;
+  return info == formulations.end() ? nullptr : &*info;
+}
+
+bool IsDistributed(const RunArguments& a) {
+  const FormulationInfo* info = InfoOf(a);
+  return info != nullptr && info->distributed;
+}
+
+// Whether the run factorises directly: every formulation but a distributed one given
+// `linear=amg` (compare's formulations are taken as direct, the larger estimate).
+bool FactorisesDirectly(const RunArguments& a) {
+  if (!IsDistributed(a)) return true;
   for (const std::string& owner : {std::string(), a.formulation}) {
     const auto options = a.options.find(owner);
     if (options == a.options.end()) continue;
@@ -101,10 +111,13 @@ bool FactorisesDirectly(const RunArguments& a) {
 
 // The memory of a model of `dofs` unknowns and `pairs` pairs in `dim` dimensions by the model
 // of memory_budget.h: each pair acts on at most `dim` dofs (a node against an obstacle); in
-// 3-D a direct factor fills by a top separator of `separator_nodes` nodes.
+// 3-D a direct factor fills by a top separator of `separator_nodes` nodes. The dense contact
+// block is the serial condensed solve's (contact_block_factor.h): a distributed run keeps its
+// contact rows in the sparse system.
 MemoryEstimate EstimateOf(const RunArguments& a, double dofs, double pairs, int dim,
                           double separator_nodes) {
-  MemoryEstimate estimate{dofs, pairs, std::min(dofs, dim * pairs)};
+  const double contact_dofs = IsDistributed(a) ? 0.0 : std::min(dofs, dim * pairs);
+  MemoryEstimate estimate{dofs, pairs, contact_dofs};
   if (!FactorisesDirectly(a)) {
     estimate.bytes_per_unknown = dim == 3 ? kBytesPerUnknownIterative3d : kBytesPerUnknownIterative;
   } else if (dim == 3) {
