@@ -17,6 +17,8 @@
 #include "model/complementarity_model.h"
 #include "path/path.h"
 #include "problems/problem.h"
+#include "step/formulation.h"
+#include "verdict/verdict.h"
 
 namespace cb::fixtures {
 
@@ -145,6 +147,29 @@ inline std::shared_ptr<const ComplementarityModel> KojimaShindoModel() {
         2 * x[0], 6 * x[1], 2, 3;
   };
   return std::make_shared<ComplementarityModel>(ComplementarityModel::Ncp(4, f, j));
+}
+
+// A fixed-load solve of a problem from its unloaded state and the verdict on its answer.
+struct JudgedSolve {
+  PathSummary summary;
+  Verdict verdict;
+};
+
+// Solves `p` at the load `lambda` from the unloaded state with `formulation` (`start`: the warm
+// start from the unloaded state, as `contactbench run`, or the formulation's cold start) and
+// judges the final state as the answer of that one step (tolerance 1e-8).
+inline JudgedSolve SolveAndJudge(const Problem& p, Formulation& formulation, double lambda,
+                                 StartKind start = StartKind::kWarm) {
+  PathOptions options;
+  options.start = start;
+  JudgedSolve out;
+  out.summary = SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), lambda, formulation,
+                               options, nullptr);
+  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(lambda),
+                         p.scales};
+  const State& s = out.summary.final_state;
+  out.verdict = Judge(step, {s.u, Vec(), s.r, lambda}, 1e-8);
+  return out;
 }
 
 // Two-bar truss closed form (src/problems/verification.cc): lambda(w), w the apex height.
