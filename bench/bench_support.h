@@ -70,6 +70,24 @@ inline void AddMachineContext() {
   benchmark::AddCustomContext("blas", BlasDescription(LoadedBlas()));
 }
 
+// The opening of a formulation benchmark's main: Google Benchmark takes its arguments (false
+// when one is not its own: the program should exit 1), one BLAS thread unless asked, and the
+// machine and the verdict's tolerance in the context.
+inline bool StartFormulationBenchmarks(int* argc, char** argv) {
+  benchmark::Initialize(argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(*argc, argv)) return false;
+  UseOneBlasThreadUnlessAsked();
+  AddMachineContext();
+  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  return true;
+}
+
+// The close of a benchmark's main: runs what was registered; main returns 0.
+inline void RunRegisteredBenchmarks() {
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+}
+
 // Why an answer is not accepted, for SkipWithError.
 inline std::string VerdictMessage(const Verdict& v, const StepResult& r, bool reversed) {
   char text[256];

@@ -211,11 +211,7 @@ std::vector<std::pair<std::string, int>> RepresentativeSteps(const Reference& re
 
 int main(int argc, char** argv) {
   using namespace cb;
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  bench::UseOneBlasThreadUnlessAsked();
-  bench::AddMachineContext();
-  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  if (!bench::StartFormulationBenchmarks(&argc, argv)) return 1;
   benchmark::AddCustomContext("time_limit_per_solve_s", "5");
 
   static std::map<std::string, std::unique_ptr<Reference>> references;
@@ -250,7 +246,6 @@ int main(int argc, char** argv) {
     }
     references[problem] = std::move(ref);
   }
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+  bench::RunRegisteredBenchmarks();
   return 0;
 }

@@ -263,11 +263,7 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
 
 int main(int argc, char** argv) {
   using namespace cb;
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  bench::UseOneBlasThreadUnlessAsked();
-  bench::AddMachineContext();
-  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  if (!bench::StartFormulationBenchmarks(&argc, argv)) return 1;
   for (const auto& info : FormulationRegistry()) {
     if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {25, 50, 100, 200, 400}) {
@@ -291,7 +287,6 @@ int main(int argc, char** argv) {
       b->Iterations(1)->Repetitions(1);  // solves of seconds, measured once (as P1's large ones)
     }
   }
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+  bench::RunRegisteredBenchmarks();
   return 0;
 }
