@@ -88,6 +88,18 @@ inline void RunRegisteredBenchmarks() {
   benchmark::Shutdown();
 }
 
+// The counters every formulation benchmark records of a solve: its work counts and the
+// verdict's equilibrium and complementarity residuals.
+inline void AddSolveCounters(const StepResult& result, const Verdict& verdict,
+                             benchmark::State& state) {
+  state.counters["iterations"] = result.counts.iterations;
+  state.counters["residual_evals"] = result.counts.residual_evals;
+  state.counters["jacobian_evals"] = result.counts.jacobian_evals;
+  state.counters["linear_solves"] = result.counts.linear_solves;
+  state.counters["eq_res"] = verdict.eq_res;
+  state.counters["comp_res"] = verdict.comp_res;
+}
+
 // Why an answer is not accepted, for SkipWithError.
 inline std::string VerdictMessage(const Verdict& v, const StepResult& r, bool reversed) {
   char text[256];

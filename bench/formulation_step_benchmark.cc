@@ -166,12 +166,7 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     if (state.error_occurred()) return;
     Vec phi;
     step.model->Gaps(step.base.u + result.point.du, &phi);
-    state.counters["iterations"] = result.counts.iterations;
-    state.counters["residual_evals"] = result.counts.residual_evals;
-    state.counters["jacobian_evals"] = result.counts.jacobian_evals;
-    state.counters["linear_solves"] = result.counts.linear_solves;
-    state.counters["eq_res"] = verdict.eq_res;
-    state.counters["comp_res"] = verdict.comp_res;
+    bench::AddSolveCounters(result, verdict, state);
     state.counters["feas_res"] = verdict.feas_res;
     state.counters["step_res"] = verdict.step_res;
     state.counters["n_contact"] = CountContacts(step, -phi, result.point.r);

@@ -237,12 +237,7 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
     state.counters["n"] = n;
     state.counters["d"] = step.num_dofs();
     state.counters["nc"] = step.num_pairs();
-    state.counters["iterations"] = result.counts.iterations;
-    state.counters["residual_evals"] = result.counts.residual_evals;
-    state.counters["jacobian_evals"] = result.counts.jacobian_evals;
-    state.counters["linear_solves"] = result.counts.linear_solves;
-    state.counters["eq_res"] = verdict.eq_res;
-    state.counters["comp_res"] = verdict.comp_res;
+    bench::AddSolveCounters(result, verdict, state);
     state.counters["peak_rss_mb"] = peak_mb;
     state.counters["solve_mem_mb"] = memory.reset() ? increase_mb : -1.0;
     const double mean_s = total_s / static_cast<double>(state.iterations());
