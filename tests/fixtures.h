@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/complementarity_model.h"
@@ -77,7 +78,7 @@ inline ::testing::AssertionResult RelativelyClose(const Vec& a, const Vec& b, do
 // r = -max(F(start), 0).
 inline Fixture ComplementarityFixture(const std::string& name,
                                       std::shared_ptr<const ComplementarityModel> model,
-                                      std::vector<Vec> solutions, Vec start = Vec()) {
+                                      std::vector<Vec> solutions, const Vec& start = Vec()) {
   Fixture f;
   f.name = name;
   f.problem = ComplementarityProblem(name, model);
@@ -90,7 +91,8 @@ inline Fixture ComplementarityFixture(const std::string& name,
   f.base.r = -w0.cwiseMax(0.0);
   f.constraint = StepConstraint::FixedLoad(0.0);
   f.unique = solutions.size() == 1;
-  f.check = [model, solutions](const State& s) -> ::testing::AssertionResult {
+  f.check = [model = std::move(model),
+             solutions = std::move(solutions)](const State& s) -> ::testing::AssertionResult {
     Vec w;
     model->InternalForce(s.u, &w);
     if ((w + s.r).lpNorm<Eigen::Infinity>() > 1e-8) {

@@ -93,6 +93,7 @@ pid_t Start(const std::vector<std::string>& arguments, const std::filesystem::pa
   std::vector<std::string> args = {CONTACTBENCH_BINARY};
   args.insert(args.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
