@@ -70,6 +70,36 @@ inline void AddMachineContext() {
   benchmark::AddCustomContext("blas", BlasDescription(LoadedBlas()));
 }
 
+// The opening of a formulation benchmark's main: Google Benchmark takes its arguments (false
+// when one is not its own: the program should exit 1), one BLAS thread unless asked, and the
+// machine and the verdict's tolerance in the context.
+inline bool StartFormulationBenchmarks(int* argc, char** argv) {
+  benchmark::Initialize(argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(*argc, argv)) return false;
+  UseOneBlasThreadUnlessAsked();
+  AddMachineContext();
+  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  return true;
+}
+
+// The close of a benchmark's main: runs what was registered; main returns 0.
+inline void RunRegisteredBenchmarks() {
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+}
+
+// The counters every formulation benchmark records of a solve: its work counts and the
+// verdict's equilibrium and complementarity residuals.
+inline void AddSolveCounters(const StepResult& result, const Verdict& verdict,
+                             benchmark::State& state) {
+  state.counters["iterations"] = result.counts.iterations;
+  state.counters["residual_evals"] = result.counts.residual_evals;
+  state.counters["jacobian_evals"] = result.counts.jacobian_evals;
+  state.counters["linear_solves"] = result.counts.linear_solves;
+  state.counters["eq_res"] = verdict.eq_res;
+  state.counters["comp_res"] = verdict.comp_res;
+}
+
 // Why an answer is not accepted, for SkipWithError.
 inline std::string VerdictMessage(const Verdict& v, const StepResult& r, bool reversed) {
   char text[256];

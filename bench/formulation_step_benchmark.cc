@@ -166,12 +166,7 @@ void StepBenchmark(benchmark::State& state, const Reference* ref, const std::str
     if (state.error_occurred()) return;
     Vec phi;
     step.model->Gaps(step.base.u + result.point.du, &phi);
-    state.counters["iterations"] = result.counts.iterations;
-    state.counters["residual_evals"] = result.counts.residual_evals;
-    state.counters["jacobian_evals"] = result.counts.jacobian_evals;
-    state.counters["linear_solves"] = result.counts.linear_solves;
-    state.counters["eq_res"] = verdict.eq_res;
-    state.counters["comp_res"] = verdict.comp_res;
+    bench::AddSolveCounters(result, verdict, state);
     state.counters["feas_res"] = verdict.feas_res;
     state.counters["step_res"] = verdict.step_res;
     state.counters["n_contact"] = CountContacts(step, -phi, result.point.r);
@@ -211,11 +206,7 @@ std::vector<std::pair<std::string, int>> RepresentativeSteps(const Reference& re
 
 int main(int argc, char** argv) {
   using namespace cb;
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  bench::UseOneBlasThreadUnlessAsked();
-  bench::AddMachineContext();
-  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  if (!bench::StartFormulationBenchmarks(&argc, argv)) return 1;
   benchmark::AddCustomContext("time_limit_per_solve_s", "5");
 
   static std::map<std::string, std::unique_ptr<Reference>> references;
@@ -250,7 +241,6 @@ int main(int argc, char** argv) {
     }
     references[problem] = std::move(ref);
   }
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+  bench::RunRegisteredBenchmarks();
   return 0;
 }

@@ -237,12 +237,7 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
     state.counters["n"] = n;
     state.counters["d"] = step.num_dofs();
     state.counters["nc"] = step.num_pairs();
-    state.counters["iterations"] = result.counts.iterations;
-    state.counters["residual_evals"] = result.counts.residual_evals;
-    state.counters["jacobian_evals"] = result.counts.jacobian_evals;
-    state.counters["linear_solves"] = result.counts.linear_solves;
-    state.counters["eq_res"] = verdict.eq_res;
-    state.counters["comp_res"] = verdict.comp_res;
+    bench::AddSolveCounters(result, verdict, state);
     state.counters["peak_rss_mb"] = peak_mb;
     state.counters["solve_mem_mb"] = memory.reset() ? increase_mb : -1.0;
     const double mean_s = total_s / static_cast<double>(state.iterations());
@@ -263,11 +258,7 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
 
 int main(int argc, char** argv) {
   using namespace cb;
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  bench::UseOneBlasThreadUnlessAsked();
-  bench::AddMachineContext();
-  benchmark::AddCustomContext("verdict_tolerance", "1e-08");
+  if (!bench::StartFormulationBenchmarks(&argc, argv)) return 1;
   for (const auto& info : FormulationRegistry()) {
     if (!bench::InSerialBenchmarks(info)) continue;
     for (int n : {25, 50, 100, 200, 400}) {
@@ -291,7 +282,6 @@ int main(int argc, char** argv) {
       b->Iterations(1)->Repetitions(1);  // solves of seconds, measured once (as P1's large ones)
     }
   }
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+  bench::RunRegisteredBenchmarks();
   return 0;
 }

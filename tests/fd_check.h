@@ -48,8 +48,8 @@ inline double RelativeError(const Mat& a, const Mat& b) {
 // Asserts that analytic `actual` matches finite-difference `expected` to relative `tol`.
 #define EXPECT_DERIVATIVE_NEAR(actual, expected, tol)                          \
   do {                                                                         \
-    const ::cb::Mat cb_actual_ = (actual);                                     \
-    const ::cb::Mat cb_expected_ = (expected);                                 \
+    const ::cb::Mat& cb_actual_ = (actual);                                    \
+    const ::cb::Mat& cb_expected_ = (expected);                                \
     ASSERT_EQ(cb_actual_.rows(), cb_expected_.rows());                         \
     ASSERT_EQ(cb_actual_.cols(), cb_expected_.cols());                         \
     EXPECT_LT(::cb::fd_check::RelativeError(cb_actual_, cb_expected_), (tol))  \

@@ -12,11 +12,14 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/complementarity_model.h"
 #include "path/path.h"
 #include "problems/problem.h"
+#include "step/formulation.h"
+#include "verdict/verdict.h"
 
 namespace cb::fixtures {
 
@@ -75,7 +78,7 @@ inline ::testing::AssertionResult RelativelyClose(const Vec& a, const Vec& b, do
 // r = -max(F(start), 0).
 inline Fixture ComplementarityFixture(const std::string& name,
                                       std::shared_ptr<const ComplementarityModel> model,
-                                      std::vector<Vec> solutions, Vec start = Vec()) {
+                                      std::vector<Vec> solutions, const Vec& start = Vec()) {
   Fixture f;
   f.name = name;
   f.problem = ComplementarityProblem(name, model);
@@ -88,7 +91,8 @@ inline Fixture ComplementarityFixture(const std::string& name,
   f.base.r = -w0.cwiseMax(0.0);
   f.constraint = StepConstraint::FixedLoad(0.0);
   f.unique = solutions.size() == 1;
-  f.check = [model, solutions](const State& s) -> ::testing::AssertionResult {
+  f.check = [model = std::move(model),
+             solutions = std::move(solutions)](const State& s) -> ::testing::AssertionResult {
     Vec w;
     model->InternalForce(s.u, &w);
     if ((w + s.r).lpNorm<Eigen::Infinity>() > 1e-8) {
@@ -145,6 +149,29 @@ inline std::shared_ptr<const ComplementarityModel> KojimaShindoModel() {
         2 * x[0], 6 * x[1], 2, 3;
   };
   return std::make_shared<ComplementarityModel>(ComplementarityModel::Ncp(4, f, j));
+}
+
+// A fixed-load solve of a problem from its unloaded state and the verdict on its answer.
+struct JudgedSolve {
+  PathSummary summary;
+  Verdict verdict;
+};
+
+// Solves `p` at the load `lambda` from the unloaded state with `formulation` (`start`: the warm
+// start from the unloaded state, as `contactbench run`, or the formulation's cold start) and
+// judges the final state as the answer of that one step (tolerance 1e-8).
+inline JudgedSolve SolveAndJudge(const Problem& p, Formulation& formulation, double lambda,
+                                 StartKind start = StartKind::kWarm) {
+  PathOptions options;
+  options.start = start;
+  JudgedSolve out;
+  out.summary = SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), lambda, formulation,
+                               options, nullptr);
+  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(lambda),
+                         p.scales};
+  const State& s = out.summary.final_state;
+  out.verdict = Judge(step, {s.u, Vec(), s.r, lambda}, 1e-8);
+  return out;
 }
 
 // Two-bar truss closed form (src/problems/verification.cc): lambda(w), w the apex height.

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "io/problem_file.h"
 #include "path/path.h"
@@ -35,12 +36,10 @@ TEST(Hertz2dExampleTest, TheFloorCarriesTheLoadOverHertzsHalfWidth) {
   const auto file = ::cb::testing_support::SourceRoot() / "examples" / "hertz-2d.json";
   const Problem p = io::LoadProblemFile(file.string());
   ImplicitFb formulation;
-  PathOptions options;
-  const PathSummary s =
-      SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), 1.0, formulation, options, nullptr);
+  const fixtures::JudgedSolve a = fixtures::SolveAndJudge(p, formulation, 1.0);
+  const PathSummary& s = a.summary;
+  const Verdict& v = a.verdict;
   ASSERT_EQ(s.status, Status::kConverged) << s.message;
-  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
-  const Verdict v = Judge(step, {s.final_state.u, Vec(), s.final_state.r, 1.0}, 1e-8);
   EXPECT_TRUE(v.verified) << v.eq_res << " " << v.comp_res << " " << v.feas_res;
 
   EXPECT_NEAR(s.final_state.r.sum(), -kPressure * kRadius * kThickness, 1e-8);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "fixtures.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "path/path.h"
 #include "problems/problem.h"
@@ -44,12 +45,10 @@ TEST(HertzTest, ClosedForm) {
 TEST(HertzTest, CoarseMeshMatchesHertzWithinItsTolerance) {
   const Problem p = MakeProblem("hertz-3d", {{"n", "8"}, {"nz", "8"}});
   ImplicitFb formulation;
-  PathOptions options;  // the warm start from the unloaded state, as `contactbench run`
-  const PathSummary s =
-      SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), 1.0, formulation, options, nullptr);
+  const fixtures::JudgedSolve a = fixtures::SolveAndJudge(p, formulation, 1.0);
+  const PathSummary& s = a.summary;
+  const Verdict& v = a.verdict;
   ASSERT_EQ(s.status, Status::kConverged) << s.message;
-  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
-  const Verdict v = Judge(step, {s.final_state.u, Vec(), s.final_state.r, 1.0}, 1e-8);
   EXPECT_TRUE(v.verified) << v.eq_res << " " << v.comp_res << " " << v.feas_res;
   EXPECT_NEAR(s.final_state.r.sum(), -7.5, 1e-8);  // the sphere carries the quarter load
   const HertzContact exact = HertzClosedForm(30.0, 50.0, 1000.0, 0.3);

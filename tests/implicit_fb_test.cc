@@ -234,14 +234,10 @@ TEST_P(BlockColdSolveTest, IsVerified) {
   o.eta = static_cast<EtaCase>(eta);
   o.solver = solver;
   ImplicitFb formulation(o);
-  PathOptions options;
-  options.start = StartKind::kCold;
-  const PathSummary s =
-      SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), 1.0, formulation, options, nullptr);
+  const fixtures::JudgedSolve a = fixtures::SolveAndJudge(p, formulation, 1.0, StartKind::kCold);
+  const PathSummary& s = a.summary;
+  const Verdict& v = a.verdict;
   EXPECT_EQ(s.status, Status::kConverged) << s.message;
-  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales};
-  StepPoint point{s.final_state.u, Vec(), s.final_state.r, 1.0};
-  const Verdict v = Judge(step, point, 1e-8);
   EXPECT_TRUE(v.verified) << v.eq_res << " " << v.comp_res << " " << v.feas_res;
   // Equilibrium of the whole body: the wall and the floor carry the 10 kN load components.
   const Vec& r = s.final_state.r;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fd_check.h"
+#include "fixtures.h"
 #include "formulations/common/reduced_step_system.h"
 #include "formulations/implicit_fb/implicit_fb.h"
 #include "io/problem_file.h"
@@ -30,30 +31,12 @@ ImplicitFbOptions Reduced() {
   return o;
 }
 
-struct Answer {
-  PathSummary summary;
-  Verdict verdict;
-};
-
-// The fixed-load solve of `p` at lambda = 1 from the unloaded state, judged.
-Answer SolveAtLoad(const Problem& p, const ImplicitFbOptions& options, StartKind start) {
-  ImplicitFb formulation(options);
-  PathOptions path_options;
-  path_options.start = start;
-  Answer a;
-  a.summary = SolveFixedLoad(*p.model, p.scales, ZeroState(*p.model), p.load, formulation,
-                             path_options, nullptr);
-  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
-                         p.scales};
-  const State& s = a.summary.final_state;
-  a.verdict = Judge(step, {s.u, Vec(), s.r, p.load}, 1e-8);
-  return a;
-}
-
 // Both routes verified, and the same u and r to `tol` relative to their sizes.
 void ExpectSameAnswer(const Problem& p, StartKind start, double tol) {
-  const Answer full = SolveAtLoad(p, ImplicitFbOptions{}, start);
-  const Answer reduced = SolveAtLoad(p, Reduced(), start);
+  ImplicitFb full_route;
+  ImplicitFb reduced_route(Reduced());
+  const fixtures::JudgedSolve full = fixtures::SolveAndJudge(p, full_route, p.load, start);
+  const fixtures::JudgedSolve reduced = fixtures::SolveAndJudge(p, reduced_route, p.load, start);
   ASSERT_EQ(full.summary.status, Status::kConverged) << full.summary.message;
   ASSERT_EQ(reduced.summary.status, Status::kConverged) << reduced.summary.message;
   EXPECT_TRUE(reduced.verdict.verified)
@@ -90,7 +73,8 @@ TEST(ReducedNewtonTest, SameAnswerAsTheFullRouteOnAQ4File) {
 // 3 % of Hertz's, and the sphere carries the quarter load.
 TEST(ReducedNewtonTest, HertzClosedForm) {
   const Problem p = MakeProblem("hertz-3d", {{"n", "8"}, {"nz", "8"}});
-  const Answer a = SolveAtLoad(p, Reduced(), StartKind::kWarm);
+  ImplicitFb formulation(Reduced());
+  const fixtures::JudgedSolve a = fixtures::SolveAndJudge(p, formulation, p.load);
   ASSERT_EQ(a.summary.status, Status::kConverged) << a.summary.message;
   EXPECT_TRUE(a.verdict.verified);
   EXPECT_NEAR(a.summary.final_state.r.sum(), -7.5, 1e-8);
@@ -99,6 +83,25 @@ TEST(ReducedNewtonTest, HertzClosedForm) {
   EXPECT_NEAR(measured.radius / exact.radius, 1.0, 0.03);
   EXPECT_NEAR(measured.peak_pressure / exact.peak_pressure, 1.0, 0.03);
 }
+
+// Implicit-fb's step of `p` to lambda = 1 from the unloaded state (eta case 1), its cold start
+// and its reduced system (not yet prepared).
+struct ColdReducedStep {
+  explicit ColdReducedStep(const Problem& p)
+      : step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0), p.scales},
+        start(MakeImplicitFbStart(step, Cold(), ImplicitFbOptions{})),
+        system(step, EtaEquation{EtaCase::kCase1, start.gamma}),
+        reduced(system) {}
+  static StartPoint Cold() {
+    StartPoint cold;
+    cold.kind = StartKind::kCold;
+    return cold;
+  }
+  StepProblem step;
+  ImplicitFbStart start;
+  ImplicitFbSystem system;
+  ReducedStepSystem reduced;
+};
 
 // The largest |row| of (29) / R on the interior dofs at the full x, and the largest term there.
 double InteriorResidual(StepEquationSystem& system, const std::vector<int>& contact_dofs,
@@ -119,13 +122,10 @@ double InteriorResidual(StepEquationSystem& system, const std::vector<int>& cont
 TEST(ReducedNewtonTest, InteriorRowsHoldAtEveryIterate) {
   for (const char* n : {"10", "40"}) {
     const Problem p = MakeProblem("block", {{"n", n}});
-    const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0),
-                           p.scales};
-    StartPoint cold;
-    cold.kind = StartKind::kCold;
-    const ImplicitFbStart start = MakeImplicitFbStart(step, cold, ImplicitFbOptions{});
-    ImplicitFbSystem system(step, EtaEquation{EtaCase::kCase1, start.gamma});
-    ReducedStepSystem reduced(system);
+    ColdReducedStep cold(p);
+    ImplicitFbSystem& system = cold.system;
+    ReducedStepSystem& reduced = cold.reduced;
+    const ImplicitFbStart& start = cold.start;
     ASSERT_TRUE(reduced.Prepare(start.x));
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
     // n = 10 (242 dofs) takes the simplicial elimination, n = 40 the contact-block factor.
@@ -153,15 +153,10 @@ TEST(ReducedNewtonTest, InteriorRowsHoldAtEveryIterate) {
 
 TEST(ReducedNewtonTest, JacobianMatchesFiniteDifferences) {
   const Problem p = MakeProblem("hertz-3d", {{"n", "4"}, {"nz", "3"}});
-  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(1.0),
-                         p.scales};
-  StartPoint cold;
-  cold.kind = StartKind::kCold;
-  const ImplicitFbStart start = MakeImplicitFbStart(step, cold, ImplicitFbOptions{});
-  ImplicitFbSystem system(step, EtaEquation{EtaCase::kCase1, start.gamma});
-  ReducedStepSystem reduced(system);
-  ASSERT_TRUE(reduced.Prepare(start.x));
-  Vec z = reduced.Reduce(start.x);
+  ColdReducedStep cold(p);
+  ReducedStepSystem& reduced = cold.reduced;
+  ASSERT_TRUE(reduced.Prepare(cold.start.x));
+  Vec z = reduced.Reduce(cold.start.x);
   // Away from the start's symmetric point: some displacement and mixed contact values.
   for (int k = 0; k < z.size(); ++k) z[k] += 1e-3 * std::sin(1.0 + k);
   SpMat j;

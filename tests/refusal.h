@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <charconv>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +35,46 @@ inline ::testing::AssertionResult Names(const std::string& message,
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+// The numbers written in `message`, in order: each run of digits (with a sign, a point or an
+// exponent) that does not continue a word, as from_chars reads it ("0.4999999", "-1", "1e-12";
+// "steps 2-6" gives 2 and 6; "P1" and "x86_64" give none).
+inline std::vector<double> NumbersIn(const std::string& message) {
+  std::vector<double> numbers;
+  auto in_word = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
+  };
+  const char* const end = message.data() + message.size();
+  std::size_t i = 0;
+  while (i < message.size()) {
+    const char c = message[i];
+    const bool digit_next =
+        i + 1 < message.size() && std::isdigit(static_cast<unsigned char>(message[i + 1])) != 0;
+    const bool starts =
+        std::isdigit(static_cast<unsigned char>(c)) != 0 || ((c == '-' || c == '.') && digit_next);
+    if (!starts || (i > 0 && in_word(message[i - 1]))) {
+      ++i;
+      continue;
+    }
+    double value = 0.0;
+    const auto [next, error] = std::from_chars(message.data() + i, end, value);
+    if (error != std::errc()) {
+      ++i;
+      continue;
+    }
+    numbers.push_back(value);
+    i = static_cast<std::size_t>(next - message.data());
+  }
+  return numbers;
+}
+
+// Success when `message` writes the number `value` (exactly, as NumbersIn reads it).
+inline ::testing::AssertionResult NamesNumber(const std::string& message, double value) {
+  for (const double number : NumbersIn(message)) {
+    if (number == value) return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure() << "\"" << message << "\" does not give " << value;
 }
 
 // Success when `message` is an input error of `file` ("FILE: WHERE: reason", io::InputError)

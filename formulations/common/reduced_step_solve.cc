@@ -5,9 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/timer.h"
 #include "formulations/common/reduced_step_system.h"
-#include "step/time_limit.h"
 
 namespace cb {
 namespace {
@@ -25,9 +23,8 @@ double ReducedComplementarityResidual(const Vec& z, int first_g, int nc) {
 SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
                                    const SolveControls& controls, StepResult* result) {
   const StepEquationLayout& l = system.layout();
-  const StepProblem& step = system.step();
   ReducedStepSystem reduced(system);
-  Stopwatch clock;
+  StepSolveBookkeeping bookkeeping(controls, result);
   SolverSummary summary;
   result->details["reduced_newton"] = std::to_string(1);
   if (!reduced.Prepare(*x)) {
@@ -35,40 +32,21 @@ SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& s
     summary.message = "reduced Newton: the interior stiffness A_ii is not positive definite";
     result->status = summary.status;
     result->message = summary.message;
-    result->point = PointFromScaled(step, l, *x);
+    result->point = PointFromScaled(system.step(), l, *x);
     return summary;
   }
   const int first_g = reduced.num_contact_dofs();
-  Vec z = reduced.Reduce(*x);
-  bool timed_out = false;
-  auto observe = [&](const IterationInfo& info) {
-    IterationRecord record;
-    record.iteration = info.iteration;
-    record.merit = info.merit;
-    record.residual_inf = info.residual_inf;
-    record.step_length = info.step_length;
-    record.comp_res = ReducedComplementarityResidual(*info.x, first_g, l.nc);
-    result->history.push_back(record);
-    if (controls.interrupted && controls.interrupted()) return false;
-    timed_out = PastTimeLimit(controls, clock);
-    return !timed_out;
+  auto comp_res = [first_g, nc = l.nc](const Vec& z) {
+    return ReducedComplementarityResidual(z, first_g, nc);
   };
-  summary = solver.Solve(reduced, &z, observe);
-  if (timed_out && summary.status == Status::kStoppedByCaller) {
-    summary.status = Status::kTimeLimit;
-    summary.message = TimeLimitMessage(controls.time_limit_s) + " at iteration " +
-                      std::to_string(summary.iterations);
-  }
+  Vec z = reduced.Reduce(*x);
+  summary = solver.Solve(reduced, &z, bookkeeping.Observer(comp_res));
+  bookkeeping.MarkTimeLimit(&summary);
   if (!reduced.Expand(z, x) && summary.status == Status::kConverged) {
     summary.status = Status::kFailed;
     summary.message = "reduced Newton: the interior could not be recovered";
   }
-  result->status = summary.status;
-  result->message = summary.message;
-  result->counts = {summary.iterations, summary.residual_evals, summary.jacobian_evals,
-                    summary.linear_solves};
-  result->point = PointFromScaled(step, l, *x);
-  result->details["final_merit"] = std::to_string(summary.final_merit);
+  bookkeeping.FillResult(system, *x, summary);
   result->details["interior_by_contact_block"] =
       std::to_string(reduced.elimination().uses_contact_block() ? 1 : 0);
   return summary;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/sparse.h"
+#include "core/timer.h"
 #include "solvers/equation_solver.h"
 #include "step/formulation.h"
 
@@ -157,6 +158,32 @@ class StepEquationSystem : public EquationSystem {
   Vec u_, internal_, phi_, reaction_, reaction_force_;
   SpMat curvature_, gap_jacobian_;
   Vec force_magnitudes_;  // ContactModel::InternalForceMagnitudes, for ResidualFloor
+};
+
+// The bookkeeping around a solve of the step equations, one for the full system
+// (RunStepEquationSolver) and the reduced one (RunReducedStepSolver), which differ only in the
+// iterate the solver sees. Made when the solve starts (its clock times the solve).
+class StepSolveBookkeeping {
+ public:
+  StepSolveBookkeeping(const SolveControls& controls, StepResult* result)
+      : controls_(controls), result_(result) {}
+  // The solver's callback: appends the iterate to result->history with comp_res =
+  // `comp_res(iterate)`, shows it to `on_iteration` (if given), then stops the solve on the
+  // interrupt hook or past the time limit.
+  IterationCallback Observer(std::function<double(const Vec&)> comp_res,
+                             std::function<void(const Vec&)> on_iteration = {});
+  // A stop of Observer's past the time limit as Status::kTimeLimit with TimeLimitMessage.
+  void MarkTimeLimit(SolverSummary* summary) const;
+  // Fills result from `summary` and the full scaled answer x: status, message, counts, the point
+  // in physical units and details["final_merit"].
+  void FillResult(const StepEquationSystem& system, const Vec& x,
+                  const SolverSummary& summary) const;
+
+ private:
+  const SolveControls& controls_;
+  StepResult* result_;
+  Stopwatch clock_;
+  bool timed_out_ = false;
 };
 
 // Runs `solver` on `system` from *x, recording the per-iteration history (with comp_res from

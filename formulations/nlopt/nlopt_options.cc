@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace cb {
 
@@ -24,10 +25,21 @@ bool AreValidStops(double ftol_rel, double xtol_rel, int maxeval, std::string* w
          Require(maxeval >= 1, "maxeval must be >= 1", why);
 }
 
-template <class Options>
-void Check(const std::string& name, const Options& options) {
+// Reads the options of the NLopt formulation `name`: its own keys by `read_own`, then the
+// stopping tests every formulation sets (AreValidStops); refuses an unknown key or an invalid
+// value naming the formulation.
+template <class Options, class ReadOwn>
+Options ReadOptions(const char* name, const FormulationConfig& config, ReadOwn read_own) {
+  OptionReader reader(name, config.options);
+  Options o;
+  read_own(&reader, &o);
+  o.ftol_rel = reader.GetReal("ftol_rel", o.ftol_rel);
+  o.xtol_rel = reader.GetReal("xtol_rel", o.xtol_rel);
+  o.maxeval = reader.GetInteger("maxeval", o.maxeval);
+  reader.Finish();
   std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument(name + " options: " + why);
+  if (!o.IsValid(&why)) throw std::invalid_argument(std::string(name) + " options: " + why);
+  return o;
 }
 
 }  // namespace
@@ -61,52 +73,37 @@ bool NloptMpccOptions::IsValid(std::string* why) const {
 }
 
 NloptMeritOptions ReadNloptMeritOptions(const FormulationConfig& config) {
-  OptionReader reader("nlopt-merit", config.options);
-  NloptMeritOptions o;
-  o.eta = static_cast<EtaCase>(config.eta);  // checked by IsValid
-  o.algorithm = reader.GetChoice("algorithm", o.algorithm, {"lbfgs", "tnewton"});
-  o.gamma_tol = reader.GetReal("gamma_tol", o.gamma_tol);
-  o.rho_min = reader.GetReal("rho_min", o.rho_min);
-  o.residual_tol = reader.GetReal("residual_tol", config.solver_options.residual_tol);
-  o.merit_scale = reader.GetReal("merit_scale", o.merit_scale);
-  o.ftol_rel = reader.GetReal("ftol_rel", o.ftol_rel);
-  o.xtol_rel = reader.GetReal("xtol_rel", o.xtol_rel);
-  o.maxeval = reader.GetInteger("maxeval", o.maxeval);
-  o.memory = reader.GetInteger("memory", o.memory);
-  reader.Finish();
-  Check("nlopt-merit", o);
-  return o;
+  return ReadOptions<NloptMeritOptions>(
+      "nlopt-merit", config, [&config](OptionReader* reader, NloptMeritOptions* o) {
+        o->eta = static_cast<EtaCase>(config.eta);  // checked by IsValid
+        o->algorithm = reader->GetChoice("algorithm", o->algorithm, {"lbfgs", "tnewton"});
+        o->gamma_tol = reader->GetReal("gamma_tol", o->gamma_tol);
+        o->rho_min = reader->GetReal("rho_min", o->rho_min);
+        o->residual_tol = reader->GetReal("residual_tol", config.solver_options.residual_tol);
+        o->merit_scale = reader->GetReal("merit_scale", o->merit_scale);
+        o->memory = reader->GetInteger("memory", o->memory);
+      });
 }
 
 NloptEnergyOptions ReadNloptEnergyOptions(const FormulationConfig& config) {
-  OptionReader reader("nlopt-energy", config.options);
-  NloptEnergyOptions o;
-  o.algorithm = reader.GetChoice("algorithm", o.algorithm, {"mma", "ccsaq", "slsqp"});
-  o.ftol_rel = reader.GetReal("ftol_rel", o.ftol_rel);
-  o.xtol_rel = reader.GetReal("xtol_rel", o.xtol_rel);
-  o.constraint_tol = reader.GetReal("constraint_tol", o.constraint_tol);
-  o.maxeval = reader.GetInteger("maxeval", o.maxeval);
-  o.active_tol = reader.GetReal("active_tol", o.active_tol);
-  o.max_dense_size = reader.GetInteger("max_dense_size", o.max_dense_size);
-  o.max_gradient_entries = reader.GetReal("max_gradient_entries", o.max_gradient_entries);
-  reader.Finish();
-  Check("nlopt-energy", o);
-  return o;
+  return ReadOptions<NloptEnergyOptions>(
+      "nlopt-energy", config, [](OptionReader* reader, NloptEnergyOptions* o) {
+        o->algorithm = reader->GetChoice("algorithm", o->algorithm, {"mma", "ccsaq", "slsqp"});
+        o->constraint_tol = reader->GetReal("constraint_tol", o->constraint_tol);
+        o->active_tol = reader->GetReal("active_tol", o->active_tol);
+        o->max_dense_size = reader->GetInteger("max_dense_size", o->max_dense_size);
+        o->max_gradient_entries = reader->GetReal("max_gradient_entries", o->max_gradient_entries);
+      });
 }
 
 NloptMpccOptions ReadNloptMpccOptions(const FormulationConfig& config) {
-  OptionReader reader("nlopt-mpcc", config.options);
-  NloptMpccOptions o;
-  o.weight = reader.GetReal("weight", o.weight);
-  o.residual_tol = reader.GetReal("residual_tol", o.residual_tol);
-  o.ftol_rel = reader.GetReal("ftol_rel", o.ftol_rel);
-  o.xtol_rel = reader.GetReal("xtol_rel", o.xtol_rel);
-  o.maxeval = reader.GetInteger("maxeval", o.maxeval);
-  o.bound_push = reader.GetReal("bound_push", o.bound_push);
-  o.max_dense_size = reader.GetInteger("max_dense_size", o.max_dense_size);
-  reader.Finish();
-  Check("nlopt-mpcc", o);
-  return o;
+  return ReadOptions<NloptMpccOptions>(
+      "nlopt-mpcc", config, [](OptionReader* reader, NloptMpccOptions* o) {
+        o->weight = reader->GetReal("weight", o->weight);
+        o->residual_tol = reader->GetReal("residual_tol", o->residual_tol);
+        o->bound_push = reader->GetReal("bound_push", o->bound_push);
+        o->max_dense_size = reader->GetInteger("max_dense_size", o->max_dense_size);
+      });
 }
 
 }  // namespace cb

@@ -121,6 +121,10 @@ void ReadControl(const BodyInput& in, const DofMap& dofs, Problem* problem) {
 
 }  // namespace
 
+std::string BodyInput::MeshNote() const {
+  return mesh ? " (" + std::filesystem::path(mesh_file).filename().string() + ")" : "";
+}
+
 Problem FinishBody(BodyInput& in, const std::shared_ptr<const ElasticBody>& body,
                    const Vec& nodal_load, const std::string& file,
                    const std::map<std::string, std::string>& settings) {

@@ -32,6 +32,9 @@ class BodyInput {
   std::string mesh_file;
 
   std::string NodeName(int index) const { return "node " + std::to_string(nodes.ids[index]); }
+  // The end of a default description: " (F)", F the mesh file's name, for elements read from a
+  // Gmsh mesh; "" for inline elements.
+  std::string MeshNote() const;
 
   // The physical group of the mesh a "group" names, of lower dimension than the body.
   const GmshMesh::Group& Group(const JsonNode& ref) const;

@@ -1,7 +1,6 @@
 // "kind": "plane-stress-q4": a small-deformation plane-stress body of Q4 elements, inline or
 // from a Gmsh mesh, with edge tractions (docs/problem-files.md).
 #include <algorithm>
-#include <filesystem>
 #include <map>
 #include <memory>
 
@@ -260,10 +259,10 @@ Problem ReadPlaneStress(const JsonNode& root, const std::string& file, const std
     for (const JsonNode& item : list->Items()) tractions.Read(item);
   }
   Problem problem = FinishBody(in, body, load, file, settings);
-  problem.description = OptionalString(
-      root, "description",
-      "plane-stress Q4 body, " + std::to_string(elements.list.size()) + " elements" +
-          (in.mesh ? " (" + std::filesystem::path(in.mesh_file).filename().string() + ")" : ""));
+  problem.description =
+      OptionalString(root, "description",
+                     "plane-stress Q4 body, " + std::to_string(elements.list.size()) + " elements" +
+                         in.MeshNote());
   return problem;
 }
 

@@ -2,7 +2,6 @@
 // a Gmsh mesh, with face tractions (docs/problem-files.md).
 #include <algorithm>
 #include <array>
-#include <filesystem>
 #include <map>
 #include <memory>
 
@@ -193,8 +192,7 @@ Problem ReadSolidHex8(const JsonNode& root, const std::string& file, const std::
   Problem problem = FinishBody(in, body, load, file, settings);
   problem.description = OptionalString(
       root, "description",
-      "hexahedral solid, " + std::to_string(elements.size()) + " elements" +
-          (in.mesh ? " (" + std::filesystem::path(in.mesh_file).filename().string() + ")" : ""));
+      "hexahedral solid, " + std::to_string(elements.size()) + " elements" + in.MeshNote());
   return problem;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "model/continuum_inputs.h"
 #include "model/displacement_size.h"
 #include "model/element_pattern.h"
 
@@ -89,34 +90,14 @@ bool ElementStiffness(const Eigen::Matrix<double, 4, 2>& xy, const Eigen::Matrix
 // range, a `fixed` of the wrong size.
 void CheckInputs(const Mat& coordinates, const PlaneStressMaterial& material,
                  const std::vector<bool>& fixed) {
-  if (coordinates.cols() != 2) {
-    throw std::invalid_argument("PlaneStressQ4: coordinates have " +
-                                std::to_string(coordinates.cols()) + " columns, expected 2");
-  }
-  for (Eigen::Index n = 0; n < coordinates.rows(); ++n) {
-    if (!coordinates.row(n).allFinite()) {
-      throw std::invalid_argument("PlaneStressQ4: node " + std::to_string(n) +
-                                  " has non-finite coordinates");
-    }
-  }
-  if (!(material.youngs_modulus > 0.0) || !std::isfinite(material.youngs_modulus)) {
-    throw std::invalid_argument("PlaneStressQ4: Young's modulus must be positive, got " +
-                                std::to_string(material.youngs_modulus));
-  }
+  CheckNodeCoordinates("PlaneStressQ4", coordinates, 2);
+  CheckYoungsModulus("PlaneStressQ4", material.youngs_modulus);
   if (!(material.thickness > 0.0) || !std::isfinite(material.thickness)) {
     throw std::invalid_argument("PlaneStressQ4: thickness must be positive, got " +
                                 std::to_string(material.thickness));
   }
-  if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-    throw std::invalid_argument("PlaneStressQ4: Poisson's ratio must lie in (-1, 0.5), got " +
-                                std::to_string(material.poisson_ratio));
-  }
-  const auto nodes = static_cast<int>(coordinates.rows());
-  if (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nodes) * 2) {
-    throw std::invalid_argument("PlaneStressQ4: `fixed` has " + std::to_string(fixed.size()) +
-                                " entries, expected num_nodes * 2 = " + std::to_string(2 * nodes) +
-                                " (or none)");
-  }
+  CheckPoissonRatio("PlaneStressQ4", material.poisson_ratio);
+  CheckFixedSize("PlaneStressQ4", fixed, static_cast<int>(coordinates.rows()), 2);
 }
 
 // Every element names four distinct known nodes.

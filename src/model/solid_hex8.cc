@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "model/continuum_inputs.h"
 #include "model/displacement_size.h"
 #include "model/element_pattern.h"
 #include "model/hex8_shape.h"
@@ -34,31 +35,10 @@ void CheckSize(const Vec& u, int num_dofs, const char* what) {
 // range, a `fixed` of the wrong size.
 void CheckInputs(const Mat& coordinates, const SolidMaterial& material,
                  const std::vector<bool>& fixed) {
-  if (coordinates.cols() != 3) {
-    throw std::invalid_argument("SolidHex8: coordinates have " +
-                                std::to_string(coordinates.cols()) + " columns, expected 3");
-  }
-  for (Eigen::Index n = 0; n < coordinates.rows(); ++n) {
-    if (!coordinates.row(n).allFinite()) {
-      throw std::invalid_argument("SolidHex8: node " + std::to_string(n) +
-                                  " has non-finite coordinates");
-    }
-  }
-  if (!(material.youngs_modulus > 0.0) || !std::isfinite(material.youngs_modulus)) {
-    throw std::invalid_argument("SolidHex8: Young's modulus must be positive, got " +
-                                std::to_string(material.youngs_modulus));
-  }
-  const double nu = material.poisson_ratio;
-  if (!(nu > -1.0 && nu < 0.5)) {
-    throw std::invalid_argument("SolidHex8: Poisson's ratio must lie in (-1, 0.5), got " +
-                                std::to_string(nu));
-  }
-  const auto nodes = static_cast<int>(coordinates.rows());
-  if (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nodes) * 3) {
-    throw std::invalid_argument("SolidHex8: `fixed` has " + std::to_string(fixed.size()) +
-                                " entries, expected num_nodes * 3 = " + std::to_string(3 * nodes) +
-                                " (or none)");
-  }
+  CheckNodeCoordinates("SolidHex8", coordinates, 3);
+  CheckYoungsModulus("SolidHex8", material.youngs_modulus);
+  CheckPoissonRatio("SolidHex8", material.poisson_ratio);
+  CheckFixedSize("SolidHex8", fixed, static_cast<int>(coordinates.rows()), 3);
 }
 
 // Every element names eight distinct known nodes and has a positive Jacobian.

@@ -153,11 +153,7 @@ Problem BuildArch(const Parameters& p) {
                         std::to_string(xy.rows()) + " nodes, " + std::to_string(members.size()) +
                         " members";
   problem.units = "kN, m";
-  problem.loading = LoadingKind::kArcLength;
-  problem.arc_length = p.Real("arc_length");
-  problem.steps = p.Integer("steps");
-  problem.control_dof = body->dofs().dof(node_a, 0);
-  problem.control_label = "x-displacement of node (a) [m]";
+  TraceByArcLength(p, body->dofs().dof(node_a, 0), "x-displacement of node (a) [m]", &problem);
   return problem;
 }
 

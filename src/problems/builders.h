@@ -2,9 +2,16 @@
 // and a Build() from them; the registry wires them to names.
 #pragma once
 
+#include <string>
+
 #include "problems/problem.h"
 
 namespace cb {
+
+// A problem traced by arc length: the step theta and the number of steps from the parameters
+// "arc_length" and "steps", and the displacement recorded as control_disp.
+void TraceByArcLength(const Parameters& parameters, int control_dof, std::string control_label,
+                      Problem* problem);
 
 Parameters BlockDefaults();
 Problem BuildBlock(const Parameters& p);

@@ -67,11 +67,8 @@ Problem BuildPlate(const Parameters& p) {
                         std::to_string(nx) + " x " + std::to_string(ny) + " x " +
                         std::to_string(nz) + " hexahedra, arc length";
   problem.units = "kN, m";
-  problem.loading = LoadingKind::kArcLength;
-  problem.arc_length = p.Real("arc_length");
-  problem.steps = p.Integer("steps");
-  problem.control_dof = body->dofs().dof(mesh.node(nx / 2, 0, 0), 2);
-  problem.control_label = "z-displacement of the bottom mid-span node [m]";
+  TraceByArcLength(p, body->dofs().dof(mesh.node(nx / 2, 0, 0), 2),
+                   "z-displacement of the bottom mid-span node [m]", &problem);
   return problem;
 }
 

@@ -1,4 +1,6 @@
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "problems/builders.h"
 #include "problems/problem.h"
@@ -29,6 +31,15 @@ Problem MakeBodyProblem(std::shared_ptr<const ElasticBody> body,
   problem.scales = ScalesFrom(parameters);
   problem.parameters = parameters;
   return problem;
+}
+
+void TraceByArcLength(const Parameters& parameters, int control_dof, std::string control_label,
+                      Problem* problem) {
+  problem->loading = LoadingKind::kArcLength;
+  problem->arc_length = parameters.Real("arc_length");
+  problem->steps = parameters.Integer("steps");
+  problem->control_dof = control_dof;
+  problem->control_label = std::move(control_label);
 }
 
 namespace {

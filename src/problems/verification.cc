@@ -47,11 +47,7 @@ Problem BuildBarWall(const Parameters& p) {
   Problem problem = MakeBodyProblem(body, obstacles, {{1, 0}}, load, p);
   problem.description = "bar pushed against a wall";
   problem.units = "consistent units";
-  problem.loading = LoadingKind::kArcLength;
-  problem.arc_length = p.Real("arc_length");
-  problem.steps = p.Integer("steps");
-  problem.control_dof = body->dofs().dof(1, 0);
-  problem.control_label = "displacement of the free end";
+  TraceByArcLength(p, body->dofs().dof(1, 0), "displacement of the free end", &problem);
   return problem;
 }
 
@@ -119,11 +115,7 @@ Problem BuildTwoBar(const Parameters& p) {
   Problem problem = MakeBodyProblem(body, obstacles, pairs, load, p);
   problem.description = "von Mises two-bar truss";
   problem.units = "consistent units";
-  problem.loading = LoadingKind::kArcLength;
-  problem.arc_length = p.Real("arc_length");
-  problem.steps = p.Integer("steps");
-  problem.control_dof = body->dofs().dof(1, 1);
-  problem.control_label = "vertical displacement of the apex";
+  TraceByArcLength(p, body->dofs().dof(1, 1), "vertical displacement of the apex", &problem);
   return problem;
 }
 
