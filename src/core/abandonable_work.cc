@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
@@ -25,8 +26,11 @@ struct Shared {
   bool abandoned = false;
 };
 
+std::atomic<WorkerStartHook> g_start_hook{nullptr};
+
 void Work(const std::shared_ptr<Shared>& shared, const char* thread_name) {
   pthread_setname_np(pthread_self(), thread_name);
+  if (const WorkerStartHook hook = g_start_hook.load()) hook(thread_name);
   shared->work();
   const std::lock_guard<std::mutex> lock(shared->mutex);
   shared->done = true;
@@ -35,6 +39,8 @@ void Work(const std::shared_ptr<Shared>& shared, const char* thread_name) {
 }
 
 }  // namespace
+
+void SetWorkerStartHookForTesting(WorkerStartHook hook) { g_start_hook.store(hook); }
 
 WorkEnd RunAbandonably(const char* thread_name, std::function<void()> work,
                        std::function<void()> release) {

@@ -27,4 +27,10 @@ enum class WorkEnd {
 WorkEnd RunAbandonably(const char* thread_name, std::function<void()> work,
                        std::function<void()> release);
 
+// For tests: called on each worker thread, with its name, before its work starts (nullptr: none).
+// A hook that waits there until the interrupt is polled makes an abandonment certain however
+// short the work is, so a test needs no problem that is slow to factorise.
+using WorkerStartHook = void (*)(const char* thread_name);
+void SetWorkerStartHookForTesting(WorkerStartHook hook);
+
 }  // namespace cb
