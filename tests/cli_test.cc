@@ -374,6 +374,14 @@ TEST(CliTest, BadProblemFilesExitWith2NamingFileAndField) {
        At("/members/0/E", {"-1"})},
       {"lcp.json", R"({"kind": "lcp", "M": [[1, 0], [0, 1]], "q": [1]})",
        At("/q", {"1", "M", "2"})},
+      // The length scale an LCP's data imply (max |q| over the largest row sum of |M|)
+      // overflows, then underflows: both were an internal error, exit 3 (issue 30).
+      {"overflowing-scale.json",
+       R"({"kind": "lcp", "M": [[1e-300, 0], [0, 1e-300]], "q": [-1e300, 1]})",
+       At("", {"length_scale"})},
+      {"underflowing-scale.json",
+       R"({"kind": "lcp", "M": [[1e300, 0], [0, 1e300]], "q": [-1e-300, 1e-300]})",
+       At("", {"length_scale"})},
       {"missing.json", "", At("")},
   };
   for (const auto& c : cases) {
