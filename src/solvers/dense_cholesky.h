@@ -2,9 +2,9 @@
 // dpotrs), for the contact block M of contact_block_factor.h, refactorised every Newton
 // iteration. LAPACK runs on the process's BLAS (OpenBLAS in the set-up), which factorises the
 // block of P1 n = 400 (802 x 802) several times faster than Eigen's own blocked LLT
-// (docs/linear-solvers.md). On a 3-D body the block is large (hertz-3d at n = 54: c = 9 075, a
-// third of 7.5e11 flops, tens of seconds), so a large one is factorised on a worker thread an
-// interrupt abandons (core/abandonable_work.h), which owns the matrix while it works.
+// (docs/linear-solvers.md). On a 3-D body the block is large (hertz-3d at n = 54: c up to
+// 9 075, a third of 7.5e11 flops, tens of seconds), so a large one is factorised on a worker
+// thread an interrupt abandons (core/abandonable_work.h), which owns the matrix while it works.
 #pragma once
 
 #ifdef CONTACTBENCH_HAVE_SUITESPARSE
