@@ -3,7 +3,6 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "core/abandonable_work.h"
 
@@ -96,7 +95,7 @@ void BorderedStiffness::Build(const ContactModel& model, const State& state, Use
     message_ = "the bordered stiffness has a non-finite entry";
     return;
   }
-  Factorize(std::move(penalised), std::move(bordered), use);
+  Factorize(&penalised, &bordered, use);
 }
 
 namespace {
@@ -119,14 +118,14 @@ void FactorizeJob(StiffnessJob* job) {
 
 }  // namespace
 
-void BorderedStiffness::Factorize(SpMat penalised, SpMat bordered, Use use) {
+void BorderedStiffness::Factorize(SpMat* penalised, SpMat* bordered, Use use) {
   auto job = std::make_shared<StiffnessJob>();
   job->solves = use == Use::kModesAndSolves;
   if (job->solves) job->lu = std::make_shared<Lu>();
-  const bool large = bordered.nonZeros() >= kInterruptibleStiffnessMinNonZeros;
-  const Eigen::Index rows = bordered.rows();
-  job->penalised = std::move(penalised);
-  job->bordered = std::move(bordered);
+  const bool large = bordered->nonZeros() >= kInterruptibleStiffnessMinNonZeros;
+  const Eigen::Index rows = bordered->rows();
+  job->penalised.swap(*penalised);  // taken over, not copied
+  job->bordered.swap(*bordered);
   if (!large) {
     FactorizeJob(job.get());
   } else if (RunAbandonably(

@@ -72,8 +72,8 @@ class BorderedStiffness {
 
  private:
   void Build(const ContactModel& model, const State& state, Use use);
-  // The inertia of `penalised` and, for kModesAndSolves, the LU of `bordered`.
-  void Factorize(SpMat penalised, SpMat bordered, Use use);
+  // The inertia of *penalised and, for kModesAndSolves, the LU of *bordered (both taken over).
+  void Factorize(SpMat* penalised, SpMat* bordered, Use use);
 
   int dofs_ = 0;
   int pairs_ = 0;
