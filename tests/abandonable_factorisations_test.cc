@@ -34,28 +34,24 @@ namespace {
 
 std::atomic<const char*> g_armed{nullptr};
 std::atomic<bool> g_armed_started{false};
-std::atomic<bool> g_polled{false};
+std::atomic<bool> g_released{false};
 
-// Holds the armed worker until the poll has said "interrupted".
+// Holds the armed worker until the interrupt is over (so that the poll has said "interrupted").
 void HoldArmedWorker(const char* name) {
   const char* armed = g_armed.load();
   if (armed == nullptr || std::strcmp(name, armed) != 0) return;
   g_armed_started = true;
-  while (!g_polled.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  while (!g_released.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
-bool InterruptOnceArmedWorkerRuns() {
-  if (!g_armed_started.load()) return false;
-  g_polled = true;
-  return true;
-}
+bool InterruptOnceArmedWorkerRuns() { return g_armed_started.load(); }
 
 // An interrupt that arrives while the worker named `name` runs, for the life of this object.
 class InterruptDuring {
  public:
   explicit InterruptDuring(const char* name) {
     g_armed_started = false;
-    g_polled = false;
+    g_released = false;
     g_armed = name;
     SetWorkerStartHookForTesting(HoldArmedWorker);
     SetInterruptPoll(InterruptOnceArmedWorkerRuns);
@@ -63,7 +59,7 @@ class InterruptDuring {
   ~InterruptDuring() {
     SetInterruptPoll(nullptr);
     SetWorkerStartHookForTesting(nullptr);
-    g_polled = true;  // lets a held worker go
+    g_released = true;  // lets a held worker go
     g_armed = nullptr;
   }
   InterruptDuring(const InterruptDuring&) = delete;
@@ -215,6 +211,31 @@ TEST(AbandonableFactorisationsTest, ALargeDenseCholesky) {
   Vec b = Vec::Ones(n);
   cholesky.SolveInPlace(b.data(), n, 1);
   EXPECT_LE((spd * b - Vec::Ones(n)).norm(), 1e-10 * std::sqrt(n));
+#endif
+}
+
+// An abandoned worker is counted until it ends, so that the program ends without the static
+// destructors meanwhile (core/abandonable_work.h: they tore down the BLAS under an abandoned
+// CHOLMOD factorisation, and a SIGTERM run crashed at exit).
+TEST(AbandonableFactorisationsTest, AnAbandonedWorkerIsCountedUntilItEnds) {
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+  const int n = kInterruptibleDenseMinOrder;
+  DenseCholesky cholesky;
+  cholesky.matrix() = Mat::Identity(n, n);
+  const auto none_running = [] {  // earlier tests' released workers may still be ending
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (AbandonedWorkRunning() && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return !AbandonedWorkRunning();
+  };
+  ASSERT_TRUE(none_running());
+  {
+    const InterruptDuring interrupt(kInterruptibleDenseThreadName);
+    EXPECT_FALSE(cholesky.Factorize());
+    EXPECT_TRUE(AbandonedWorkRunning());  // held at its start
+  }
+  EXPECT_TRUE(none_running());
 #endif
 }
 
