@@ -100,7 +100,7 @@ void BorderedStiffness::Build(const ContactModel& model, const State& state, Use
 
 namespace {
 
-// What the factorisations' worker owns: the matrices (moved in) and what it makes of them.
+// What the factorisations' worker owns: the matrices (taken over) and what it makes of them.
 struct StiffnessJob {
   SpMat penalised, bordered;
   bool solves = false;
