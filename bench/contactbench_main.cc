@@ -1,7 +1,9 @@
 // The suite driver: see harness/cli.h.
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 
+#include "core/abandonable_work.h"
 #include "formulations/petsc/petsc.h"
 #include "formulations/petsc_dist/parallel_libraries.h"
 #include "harness/cli.h"
@@ -32,9 +34,18 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) then fails the write that exceeds it, which the records
   // report (exit 3), instead of killing the process in the middle of a line.
   std::signal(SIGXFSZ, SIG_IGN);
-  // PETSc starts on first use, once per process; this scope finalises it (petsc.h).
-  const cb::PetscProcessScope petsc;
-  const int status = cb::harness::Main(argc, argv);
+  int status = 0;
+  {
+    // PETSc starts on first use, once per process; this scope finalises it (petsc.h).
+    const cb::PetscProcessScope petsc;
+    status = cb::harness::Main(argc, argv);
+  }
   returned = true;
+  if (cb::AbandonedWorkRunning()) {
+    // A factorisation abandoned on an interrupt is still running: the static destructors would
+    // tear down the BLAS under it (core/abandonable_work.h). The records are written already.
+    std::fflush(nullptr);
+    std::_Exit(status);
+  }
   return status;
 }

@@ -1,5 +1,6 @@
 // The suite driver end to end: exit statuses, messages and the records it writes.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -335,6 +336,27 @@ TEST(CliTest, EveryExampleRunsAndVerifiesWithItsKnownAnswer) {
   }
 }
 
+// `--out /` is refused as root too, before anything is made there (issue 30: it was accepted,
+// and `--overwrite` would have removed /figures and /vtk). Made safe: the run sees / read-only
+// (a mount namespace of its own), so a run that took / could write nothing into it; and the
+// refusal must be the root directory's, given before the directory is created or probed (a
+// read-only directory is refused too, for not being writable).
+TEST(CliTest, TheRootDirectoryIsRefusedAsOutBeforeAnythingIsMadeThere) {
+  if (geteuid() != 0) GTEST_SKIP() << "the point is a run as root";
+  const std::string read_only_root =
+      "unshare -m sh -c 'mount --bind / / && "
+      "mount -o remount,bind,ro / && exec \"$0\" \"$@\"' ";
+  if (RunShell(read_only_root + "true 2>&1").status != 0) {
+    GTEST_SKIP() << "no mount namespace with a read-only root here";
+  }
+  const Outcome o = RunShell(read_only_root + CONTACTBENCH_BINARY +
+                             " run --problem two-bar --formulation implicit-fb --out / 2>&1");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_TRUE(RefusedOption(o.output, At("--out", {"root"}))) << o.output;
+  EXPECT_EQ(o.output.find("writable"), std::string::npos) << "probed / first: " << o.output;
+  EXPECT_EQ(o.output.find("cannot create"), std::string::npos) << o.output;
+}
+
 TEST(CliTest, BadProblemFilesExitWith2NamingFileAndField) {
   const auto dir = TempDir("bad_files");
   std::filesystem::create_directories(dir);
@@ -352,6 +374,14 @@ TEST(CliTest, BadProblemFilesExitWith2NamingFileAndField) {
        At("/members/0/E", {"-1"})},
       {"lcp.json", R"({"kind": "lcp", "M": [[1, 0], [0, 1]], "q": [1]})",
        At("/q", {"1", "M", "2"})},
+      // The length scale an LCP's data imply (max |q| over the largest row sum of |M|)
+      // overflows, then underflows: both were an internal error, exit 3 (issue 30).
+      {"overflowing-scale.json",
+       R"({"kind": "lcp", "M": [[1e-300, 0], [0, 1e-300]], "q": [-1e300, 1]})",
+       At("", {"length_scale"})},
+      {"underflowing-scale.json",
+       R"({"kind": "lcp", "M": [[1e300, 0], [0, 1e300]], "q": [-1e-300, 1e-300]})",
+       At("", {"length_scale"})},
       {"missing.json", "", At("")},
   };
   for (const auto& c : cases) {

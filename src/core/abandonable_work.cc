@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
@@ -25,16 +26,27 @@ struct Shared {
   bool abandoned = false;
 };
 
+std::atomic<WorkerStartHook> g_start_hook{nullptr};
+std::atomic<int> g_abandoned_running{0};
+
 void Work(const std::shared_ptr<Shared>& shared, const char* thread_name) {
   pthread_setname_np(pthread_self(), thread_name);
+  if (const WorkerStartHook hook = g_start_hook.load()) hook(thread_name);
   shared->work();
   const std::lock_guard<std::mutex> lock(shared->mutex);
   shared->done = true;
-  if (shared->abandoned) shared->release();  // nobody takes the result
+  if (shared->abandoned) {
+    shared->release();  // nobody takes the result
+    --g_abandoned_running;
+  }
   shared->finished.notify_all();
 }
 
 }  // namespace
+
+void SetWorkerStartHookForTesting(WorkerStartHook hook) { g_start_hook.store(hook); }
+
+bool AbandonedWorkRunning() { return g_abandoned_running.load() > 0; }
 
 WorkEnd RunAbandonably(const char* thread_name, std::function<void()> work,
                        std::function<void()> release) {
@@ -52,7 +64,8 @@ WorkEnd RunAbandonably(const char* thread_name, std::function<void()> work,
   while (!shared->finished.wait_for(lock, std::chrono::milliseconds(100),
                                     [&] { return shared->done; })) {
     if (InterruptPolled()) {
-      shared->abandoned = true;
+      shared->abandoned = true;  // under the lock: the worker counts it down when it ends
+      ++g_abandoned_running;
       return WorkEnd::kAbandoned;
     }
   }

@@ -7,7 +7,8 @@
 // Why this is sound: the work and its release touch only what they own (captured by value or
 // through a shared_ptr, never the caller's objects), so the caller may free its own and return;
 // the abandoned worker frees what it owns when the work ends (`release`), or dies with the
-// process, which may exit under it since the work only computes and allocates. The alternatives
+// process, which may exit under it since the work only computes and allocates, provided the
+// exit runs no static destructors (AbandonedWorkRunning, below). The alternatives
 // are not: a flag checked inside the library needs a patched library, and cancelling a thread
 // inside it would leave its allocations and possibly the allocator's lock half done.
 #pragma once
@@ -26,5 +27,17 @@ enum class WorkEnd {
 // told apart in /proc/PID/task/*/comm) while the calling thread waits as above.
 WorkEnd RunAbandonably(const char* thread_name, std::function<void()> work,
                        std::function<void()> release);
+
+// Whether an abandoned worker is still at its work. The program must then end without running
+// static destructors (std::_Exit after flushing): the work may be inside a library whose
+// process-wide state they tear down (OpenBLAS's buffers under CHOLMOD's supernodal factor or
+// dpotrf: a SIGTERM during P1's or hertz-3d's first iteration crashed at exit, issue 30).
+bool AbandonedWorkRunning();
+
+// For tests: called on each worker thread, with its name, before its work starts (nullptr: none).
+// A hook that waits there until the interrupt is polled makes an abandonment certain however
+// short the work is, so a test needs no problem that is slow to factorise.
+using WorkerStartHook = void (*)(const char* thread_name);
+void SetWorkerStartHookForTesting(WorkerStartHook hook);
 
 }  // namespace cb

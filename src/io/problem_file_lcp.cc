@@ -2,8 +2,10 @@
 // or sparse (entries) (docs/problem-files.md).
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
+#include "io/input_error.h"
 #include "io/problem_file_kinds.h"
 #include "io/problem_file_loading.h"
 #include "model/complementarity_model.h"
@@ -105,7 +107,11 @@ Problem ReadLcp(const JsonNode& root, const std::string& file, const Settings& s
 
   Problem problem;
   problem.model = std::move(model);
-  problem.scales = ScalesFrom(p);
+  try {
+    problem.scales = ScalesFrom(p);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, "", e.what());  // a scale the data imply: none usable
+  }
   problem.parameters = p;
   problem.loading = LoadingKind::kFixedLoad;
   problem.load = 0.0;  // f = 0: (29) at lambda = 0 is w = M z + q = -r

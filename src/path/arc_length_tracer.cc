@@ -85,7 +85,12 @@ bool ArcLengthTracer::Start(const State& initial) {
   std::string why;
   if (!TangentPredictor(model_, scales_, initial, options_.arc_length, options_.lambda_weight,
                         &at_.heading.du, &at_.heading.dlambda, &why)) {
-    Finish(Status::kFailed, why);
+    // An interrupt abandons the tangent's factorisation on a large body (stability.h).
+    if (InterruptedByCaller()) {
+      Finish(Status::kStoppedByCaller, "stopped by the caller before step 1 (" + why + ")");
+    } else {
+      Finish(Status::kFailed, why);
+    }
     return false;
   }
   if (options_.bifurcations != BifurcationMode::kOff) {

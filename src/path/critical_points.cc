@@ -263,6 +263,11 @@ CriticalPointFinder::PastTheChange CriticalPointFinder::BracketModeChange(
       return past;
     }
     const int modes = UnstableModes(model_, scales_, trial.state);
+    if (modes < 0 && options_.controls.interrupted && options_.controls.interrupted()) {
+      // The count was abandoned on the interrupt (stability.h): nothing is bracketed.
+      point->message = "stopped by the caller while counting the unstable modes";
+      return past;
+    }
     if (modes == modes_a) {
       lo = t;
       point->state = trial.state;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/abandonable_work.h"
+
 namespace cb {
 
 int UnstableModes(const ContactModel& model, const ContactScales& scales, const State& state) {
@@ -93,18 +95,56 @@ void BorderedStiffness::Build(const ContactModel& model, const State& state, Use
     message_ = "the bordered stiffness has a non-finite entry";
     return;
   }
-  Eigen::SimplicialLDLT<SpMat> ldlt(penalised);
+  Factorize(&penalised, &bordered, use);
+}
+
+namespace {
+
+// What the factorisations' worker owns: the matrices (taken over) and what it makes of them.
+struct StiffnessJob {
+  SpMat penalised, bordered;
+  bool solves = false;
+  int unstable_modes = -1;
+  std::shared_ptr<Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>> lu;
+};
+
+void FactorizeJob(StiffnessJob* job) {
+  const Eigen::SimplicialLDLT<SpMat> ldlt(job->penalised);
   if (ldlt.info() == Eigen::Success) {
-    unstable_modes_ = static_cast<int>((ldlt.vectorD().array() < 0.0).count());
+    job->unstable_modes = static_cast<int>((ldlt.vectorD().array() < 0.0).count());
   }
+  if (job->solves) job->lu->compute(job->bordered);
+}
+
+}  // namespace
+
+void BorderedStiffness::Factorize(SpMat* penalised, SpMat* bordered, Use use) {
+  auto job = std::make_shared<StiffnessJob>();
+  job->solves = use == Use::kModesAndSolves;
+  if (job->solves) job->lu = std::make_shared<Lu>();
+  const bool large = bordered->nonZeros() >= kInterruptibleStiffnessMinNonZeros;
+  const Eigen::Index rows = bordered->rows();
+  job->penalised.swap(*penalised);  // taken over, not copied
+  job->bordered.swap(*bordered);
+  if (!large) {
+    FactorizeJob(job.get());
+  } else if (RunAbandonably(
+                 kInterruptibleStiffnessThreadName, [job] { FactorizeJob(job.get()); }, [] {}) !=
+             WorkEnd::kFinished) {
+    interrupted_ = true;
+    message_ = "the factorisation of the " + std::to_string(rows) +
+               "-row bordered stiffness was abandoned on an interrupt";
+    return;
+  }
+  unstable_modes_ = job->unstable_modes;
   if (use == Use::kModes) {
     message_ = "factorised for the unstable modes only";
     return;
   }
-  lu_.compute(bordered);
-  if (lu_.info() != Eigen::Success) {
+  lu_ = job->lu;
+  if (lu_->info() != Eigen::Success) {
     message_ = "the stiffness bordered by the closed contacts is singular (" +
-               lu_.lastErrorMessage() + ")";
+               lu_->lastErrorMessage() + ")";
     return;
   }
   ok_ = true;
@@ -114,7 +154,7 @@ bool BorderedStiffness::SolveDisplacement(const Vec& rhs, Vec* du) const {
   if (!ok_) return false;
   Vec full = Vec::Zero(dofs_ + num_closed());
   full.head(dofs_) = rhs;
-  const Vec solution = lu_.solve(full);
+  const Vec solution = lu_->solve(full);
   if (!solution.allFinite()) return false;
   *du = solution.head(dofs_);
   return true;
@@ -124,7 +164,7 @@ bool BorderedStiffness::Solve(const Vec& rhs, Vec* du, Vec* dr) const {
   if (!ok_) return false;
   Vec full = Vec::Zero(dofs_ + num_closed());
   full.head(dofs_) = rhs;
-  const Vec solution = lu_.solve(full);
+  const Vec solution = lu_->solve(full);
   if (!solution.allFinite()) return false;
   *du = solution.head(dofs_);
   *dr = Vec::Zero(pairs_);
@@ -143,7 +183,7 @@ bool BorderedStiffness::NullSpace(int k, int iterations, Mat* basis) const {
   }
   for (int it = 0; it < iterations; ++it) {
     Mat y(n, k);
-    for (int j = 0; j < k; ++j) y.col(j) = lu_.solve(Vec(x.col(j)));
+    for (int j = 0; j < k; ++j) y.col(j) = lu_->solve(Vec(x.col(j)));
     if (!y.allFinite()) return false;
     x = Eigen::HouseholderQR<Mat>(y).householderQ() * Mat::Identity(n, k);
   }

@@ -15,11 +15,14 @@
 // Z tend to those of Z^T K_t Z while the m others grow with rho (rho = 1e6 max|diag K_t|,
 // the rows of G_c being unit normals).
 // Eigen's SparseLU (not the configurable solver) factorises A: the path's sizes are small and
-// the tangent and null vector need nothing else.
+// the tangent and null vector need nothing else. On a 3-D body both factorisations take minutes
+// (the LDL^T of plate-3d at 32 x 32 x 32: over 90 s, issue 30), so a large A is factorised on a
+// worker thread an interrupt abandons (core/abandonable_work.h); the factors are then missing.
 #pragma once
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,12 @@
 #include "step/step_problem.h"
 
 namespace cb {
+
+// A with fewer stored entries is factorised on the calling thread.
+constexpr Eigen::Index kInterruptibleStiffnessMinNonZeros = 200000;
+
+// The worker thread's name (at most 15 characters).
+constexpr const char* kInterruptibleStiffnessThreadName = "stiffness-fact";
 
 class BorderedStiffness {
  public:
@@ -42,9 +51,10 @@ class BorderedStiffness {
   BorderedStiffness(const ContactModel& model, const ContactScales& scales, const State& state,
                     const std::vector<bool>& closed);
 
-  // False when A is numerically singular, not finite or not factorised (kModes); message()
-  // says why.
+  // False when A is numerically singular, not finite or not factorised (kModes, or abandoned
+  // on an interrupt: interrupted()); message() says why.
   bool ok() const { return ok_; }
+  bool interrupted() const { return interrupted_; }
   const std::string& message() const { return message_; }
   // The number of negative eigenvalues of Z^T K_t Z (0: stable); -1 when not computed.
   int unstable_modes() const { return unstable_modes_; }
@@ -62,12 +72,16 @@ class BorderedStiffness {
 
  private:
   void Build(const ContactModel& model, const State& state, Use use);
+  // The inertia of *penalised and, for kModesAndSolves, the LU of *bordered (both taken over).
+  void Factorize(SpMat* penalised, SpMat* bordered, Use use);
 
   int dofs_ = 0;
   int pairs_ = 0;
   std::vector<int> closed_pairs_;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  using Lu = Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>;
+  std::shared_ptr<Lu> lu_;  // made by the worker when there is one
   bool ok_ = false;
+  bool interrupted_ = false;
   int unstable_modes_ = -1;
   std::string message_;
 };

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -17,7 +18,21 @@ void DeclareScaleParameters(double length, double force, Parameters* parameters)
 }
 
 ContactScales ScalesFrom(const Parameters& parameters) {
-  return {parameters.Real("length_scale"), parameters.Real("force_scale")};
+  const ContactScales scales{parameters.Real("length_scale"), parameters.Real("force_scale")};
+  // A declared value is in (0, 1e30]; the default an LCP's data imply (ComplementarityModel::
+  // DataScales: max |q| over the largest row sum of |M|) can over- or underflow, which the step
+  // would refuse later as an internal error (issue 30: exit 3).
+  for (const auto& [name, value] : {std::pair<const char*, double>{"length_scale", scales.length},
+                                    {"force_scale", scales.force}}) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw std::invalid_argument(
+          std::string(name) + " is " + std::to_string(value) +
+          ", not a positive finite number: the problem's data imply no usable scale (their "
+          "largest and smallest entries differ by more than doubles hold); give " +
+          name + " in the file or with --set " + name + "=VALUE");
+    }
+  }
+  return scales;
 }
 
 Problem MakeBodyProblem(std::shared_ptr<const ElasticBody> body,

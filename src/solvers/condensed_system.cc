@@ -73,6 +73,10 @@ bool CondensedSystem::Factorize(const double* values, double coupling) {
   if (!CondensePairs(values, coupling)) return false;
   contact_block_active_ = contact_block_.possible() &&
                           contact_block_.Factorize(blocks_, values, pair_spring_, kc_slots_, &kc_);
+  if (!contact_block_active_ && contact_block_.possible() && contact_block_.interrupted()) {
+    interrupted_ = true;  // abandoned: no other factorisation to start
+    return false;
+  }
   if (!contact_block_active_ && !FactorizeWhole(values)) return false;  // not positive definite
   return FactorizeBorder(values);
 }
@@ -141,8 +145,7 @@ bool CondensedSystem::FactorizeWhole(const double* values) {
   if (!whole_factor_) {
     // (Again after an interrupt abandoned the factor: interruptible_cholmod.h.)
     ++num_analyses_;
-    cholmod_sparse view = LowerTriangleView(kc_);
-    whole_factor_ = cholmod_.Analyse(&view);
+    whole_factor_ = AnalyseInterruptibly(&cholmod_, &kc_, nullptr, &interrupted_);
     if (!whole_factor_) return false;
   }
   return FactorizeInterruptibly(&cholmod_, &kc_, &whole_factor_, &interrupted_);

@@ -48,8 +48,8 @@ class CondensedSystem {
   int capped_pairs() const { return capped_pairs_; }
   bool used_contact_block() const { return contact_block_active_; }
   int num_analyses() const { return num_analyses_ + contact_block_.num_analyses(); }
-  // Whether the last Factorize failed because an interrupt abandoned the factorisation of Kc
-  // whole (interruptible_cholmod.h).
+  // Whether the last Factorize failed because an interrupt abandoned a factorisation of Kc,
+  // whole or by the contact block (interruptible_cholmod.h, dense_cholesky.h).
   bool interrupted() const { return interrupted_; }
 
  private:

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <vector>
 
+#include "solvers/interruptible_cholmod.h"
+
 namespace cb {
 namespace {
 
@@ -70,6 +72,7 @@ void ContactBlockFactor::Analyse(const JacobianBlocks& blocks,
   contact_index_.assign(d, -1);
   for (int k = 0; k < nc_dofs; ++k) contact_index_[contact_dofs_[k]] = k;
   possible_ = false;
+  interrupted_ = false;
   factor_holds_ = false;
   factored_stiffness_.clear();
   if (nc_dofs == 0 || d < kMinDofs || kMaxContactFraction * nc_dofs > d) return;
@@ -81,17 +84,25 @@ void ContactBlockFactor::Analyse(const JacobianBlocks& blocks,
       kc_contact_diagonal_slot_[contact_index_[kc_entries[k].first]] = kc_slots[k];
     }
   }
-  std::vector<int> permutation = InteriorOrdering(blocks);
-  if (permutation.empty()) return;
-  for (int k = 0; k < nc_dofs; ++k) permutation[d - nc_dofs + k] = contact_dofs_[k];
-  cholmod_sparse view = LowerTriangleView(*kc);
+  permutation_.clear();
+  // An analysis an interrupt abandoned is done again by the next Factorize.
+  possible_ = AnalyseInOrder(blocks, kc) || interrupted_;
+}
+
+// The analysis of Kc in the order permutation_ (found first when there is none); false unless
+// CHOLMOD kept that order (the trailing block of L is then L_cc), or on an interrupt.
+bool ContactBlockFactor::AnalyseInOrder(const JacobianBlocks& blocks, SpMat* kc) {
+  if (permutation_.empty()) {
+    permutation_ = InteriorOrdering(blocks);
+    if (permutation_.empty()) return false;
+    const int nc_dofs = num_contact_dofs();
+    for (int k = 0; k < nc_dofs; ++k) permutation_[num_dofs_ - nc_dofs + k] = contact_dofs_[k];
+  }
   ++num_analyses_;
-  factor_ = cholmod_->AnalyseInOrder(&view, permutation.data());
-  if (!factor_) return;
-  // CHOLMOD must have kept the order: the trailing block of L is then L_cc.
+  factor_ = AnalyseInterruptibly(cholmod_, kc, permutation_.data(), &interrupted_);
+  if (!factor_) return false;
   const int* kept = static_cast<const int*>(factor_->Perm);
-  if (!std::equal(permutation.begin(), permutation.end(), kept)) return;
-  possible_ = true;
+  return std::equal(permutation_.begin(), permutation_.end(), kept);
 }
 
 // The permutation of the dofs whose first d - c entries order the interior dofs as CHOLMOD's
@@ -109,8 +120,8 @@ std::vector<int> ContactBlockFactor::InteriorOrdering(const JacobianBlocks& bloc
     }
   }
   SpMat aii = InteriorPattern(blocks, interior_index, ni);
-  cholmod_sparse view = LowerTriangleView(aii);
-  const CholmodFactor interior_symbolic = cholmod_->Analyse(&view);
+  const CholmodFactor interior_symbolic =
+      AnalyseInterruptibly(cholmod_, &aii, nullptr, &interrupted_);
   if (!interior_symbolic) return {};
   std::vector<int> permutation(d);
   const int* ip = static_cast<const int*>(interior_symbolic->Perm);
@@ -121,6 +132,12 @@ std::vector<int> ContactBlockFactor::InteriorOrdering(const JacobianBlocks& bloc
 bool ContactBlockFactor::Factorize(const JacobianBlocks& blocks, const double* values,
                                    const std::vector<double>& pair_spring,
                                    const std::vector<int>& kc_slots, SpMat* kc) {
+  interrupted_ = false;
+  // After an interrupt abandoned the factor (the worker took it), it is analysed again.
+  if (!factor_ && !AnalyseInOrder(blocks, kc)) {
+    possible_ = interrupted_;  // an interrupted analysis is tried again
+    return false;
+  }
   const double* val = values;
   const std::vector<JacobianBlocks::Entry>& a_entries = blocks.stiffness_lower;
   const std::size_t num_a = a_entries.size();
@@ -149,8 +166,13 @@ bool ContactBlockFactor::Factorize(const JacobianBlocks& blocks, const double* v
       diagonal_shift_[k] = a > 0.0 ? a : 1.0;
       kv[kc_contact_diagonal_slot_[k]] += diagonal_shift_[k];
     }
-    cholmod_sparse view = LowerTriangleView(*kc);
-    if (!cholmod_->Factorize(&view, factor_) || !factor_->is_super) return false;
+    // The first iteration's big factorisation (P1 n = 300: seconds to tens of seconds), on a
+    // worker an interrupt abandons.
+    if (!FactorizeInterruptibly(cholmod_, kc, &factor_, &interrupted_)) {
+      if (interrupted_) factored_stiffness_.clear();  // factorised again, from the start
+      return false;
+    }
+    if (!factor_->is_super) return false;
     ReadTrailingFactor();
     s_cc_.noalias() =
         trailing_factor_.triangularView<Eigen::Lower>() * trailing_factor_.transpose();
@@ -173,7 +195,9 @@ bool ContactBlockFactor::Factorize(const JacobianBlocks& blocks, const double* v
       }
     }
   }
-  return contact_block_.Factorize();
+  const bool factorized = contact_block_.Factorize();
+  interrupted_ = contact_block_.interrupted();
+  return factorized;
 }
 
 void ContactBlockFactor::ReadTrailingFactor() {

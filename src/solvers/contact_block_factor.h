@@ -32,10 +32,13 @@ class ContactBlockFactor {
                const std::vector<int>& kc_slots, SpMat* kc);
   // Whether Factorize may be tried: analysed, and A has not changed values since.
   bool possible() const { return possible_; }
+  // Whether the last Factorize was abandoned on an interrupt.
+  bool interrupted() const { return interrupted_; }
   // Factorises M for the springs `pair_spring` at the Jacobian values `values`, and A + D0 first
   // when it is new (then through `kc`, whose values it overwrites). False when A changed values
   // after its first factorisation (then possible() is false from now on) or a factor is not
-  // positive definite.
+  // positive definite, or when an interrupt abandoned a factorisation (then interrupted(); the
+  // factor of A + D0 is analysed again before the next one: interruptible_cholmod.h).
   bool Factorize(const JacobianBlocks& blocks, const double* values,
                  const std::vector<double>& pair_spring, const std::vector<int>& kc_slots,
                  SpMat* kc);
@@ -58,6 +61,7 @@ class ContactBlockFactor {
 
  private:
   std::vector<int> InteriorOrdering(const JacobianBlocks& blocks);
+  bool AnalyseInOrder(const JacobianBlocks& blocks, SpMat* kc);
   // out = phase `second` of phase `first` of the d x cols block `in` (CHOLMOD solve phases).
   bool TwoPhases(int first, int second, const double* in, int cols, Mat* out);
   // L_cc, read off the supernodes of the factor of A + D0.
@@ -67,6 +71,8 @@ class ContactBlockFactor {
   Cholmod* cholmod_;
   int num_dofs_ = 0;
   std::vector<int> contact_dofs_;
+  std::vector<int> permutation_;  // of the analysis: the interior, then c
+  bool interrupted_ = false;
   std::vector<int> contact_index_;             // per dof: its place in contact_dofs_, or -1
   std::vector<int> kc_contact_diagonal_slot_;  // per contact dof: Kc's diagonal slot
   bool possible_ = false;

@@ -20,7 +20,47 @@ struct Job {
   bool factorized = false;
 };
 
+// What an analysis's worker owns: its CHOLMOD state, a copy of the pattern (and of the order
+// given), and the symbolic factor it makes.
+struct AnalysisJob {
+  Cholmod cholmod;
+  SpMat lower;
+  std::vector<int> permutation;
+  CholmodFactor factor;
+};
+
+CholmodFactor AnalyseHere(Cholmod* cholmod, SpMat* lower, int* permutation) {
+  cholmod_sparse view = LowerTriangleView(*lower);
+  return permutation != nullptr ? cholmod->AnalyseInOrder(&view, permutation)
+                                : cholmod->Analyse(&view);
+}
+
 }  // namespace
+
+CholmodFactor AnalyseInterruptibly(Cholmod* cholmod, SpMat* lower, const int* permutation,
+                                   bool* interrupted) {
+  *interrupted = false;
+  if (lower->nonZeros() < kInterruptibleCholmodMinNonZeros) {
+    std::vector<int> order;
+    if (permutation != nullptr) order.assign(permutation, permutation + lower->rows());
+    return AnalyseHere(cholmod, lower, permutation != nullptr ? order.data() : nullptr);
+  }
+  auto job = std::make_shared<AnalysisJob>();
+  job->lower = *lower;
+  if (permutation != nullptr) job->permutation.assign(permutation, permutation + lower->rows());
+  const WorkEnd end = RunAbandonably(
+      kInterruptibleCholmodAnalysisThreadName,
+      [job] {
+        job->factor = AnalyseHere(&job->cholmod, &job->lower,
+                                  job->permutation.empty() ? nullptr : job->permutation.data());
+      },
+      [job] { job->factor.reset(); });  // nobody takes it
+  if (end != WorkEnd::kFinished) {
+    *interrupted = true;
+    return {};
+  }
+  return CholmodFactor(job->factor.release(), cholmod->common());
+}
 
 bool FactorizeInterruptibly(Cholmod* cholmod, SpMat* lower, CholmodFactor* factor,
                             bool* interrupted) {

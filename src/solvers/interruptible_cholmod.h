@@ -1,4 +1,5 @@
-// CHOLMOD's numeric factorisation (cholmod_factorize) of a large matrix, interruptible. CHOLMOD
+// CHOLMOD's symbolic analysis (cholmod_analyze: the ordering, seconds on a large 3-D pattern)
+// and numeric factorisation (cholmod_factorize) of a large matrix, interruptible. CHOLMOD
 // has no hook to stop it, and on a 3-D system its supernodal factorisation can take tens of
 // seconds (hertz-3d with E >= 1e20: 18-36 s an iteration before the fall-back to KLU, and a
 // SIGTERM waited for it; issue 30). So the factorisation runs on a worker thread the caller can
@@ -20,8 +21,15 @@ namespace cb {
 // ~0.1 ms; such a factorisation takes well under a second).
 constexpr Eigen::Index kInterruptibleCholmodMinNonZeros = 200000;
 
-// The worker thread's name (at most 15 characters).
+// The worker threads' names (at most 15 characters).
 constexpr const char* kInterruptibleCholmodThreadName = "cholmod-factor";
+constexpr const char* kInterruptibleCholmodAnalysisThreadName = "cholmod-analyse";
+
+// cholmod->Analyse(view of *lower), or cholmod->AnalyseInOrder(view, permutation) when
+// `permutation` is given (d entries; copied). On an interrupt, returns an empty factor with
+// *interrupted set; the worker frees what it made.
+CholmodFactor AnalyseInterruptibly(Cholmod* cholmod, SpMat* lower, const int* permutation,
+                                   bool* interrupted);
 
 // cholmod->Factorize(view of *lower, *factor): *lower stores the lower triangle of a symmetric
 // matrix with the pattern *factor was analysed for (CHOLMOD only reads it). On an interrupt,

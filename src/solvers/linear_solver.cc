@@ -273,7 +273,12 @@ class KluSolver final : public PatternTrackingSolver {
  protected:
   bool Analyze(const SpMat& a, std::string* why) override {
     FreeFactors();  // the old numeric object belongs to the old symbolic one
-    symbolic_ = klu_analyze(static_cast<int>(a.rows()), ColumnPointers(a), RowIndices(a), &common_);
+    bool interrupted = false;
+    symbolic_ = AnalyseInterruptibly(a, &common_, &interrupted);
+    if (interrupted) {
+      *why = "klu: symbolic analysis of " + Size(a) + " abandoned on an interrupt";
+      return false;
+    }
     if (symbolic_ == nullptr) {
       *why = "klu: symbolic analysis failed: " + KluStatus(a);
       return false;
@@ -282,7 +287,14 @@ class KluSolver final : public PatternTrackingSolver {
   }
 
   bool NumericFactorize(const SpMat& a, std::string* why) override {
-    if (numeric_ != nullptr && RefactorIsSound(a)) return true;
+    if (numeric_ != nullptr) {
+      bool interrupted = false;
+      if (RefactorIsSound(a, &interrupted)) return true;
+      if (interrupted) {
+        *why = "klu: refactorisation of " + Size(a) + " abandoned on an interrupt";
+        return false;
+      }
+    }
     FreeNumeric();
     // An interrupted factorisation took the symbolic object with it (interruptible_klu.h).
     if (symbolic_ == nullptr && !Analyze(a, why)) return false;
@@ -346,9 +358,9 @@ class KluSolver final : public PatternTrackingSolver {
   // Newton direction costs at most iterations, never the answer, which the verdict judges.
   static constexpr double kMinRefactorRcond = std::numeric_limits<double>::epsilon();
 
-  bool RefactorIsSound(const SpMat& a) {
-    if (klu_refactor(ColumnPointers(a), RowIndices(a), Values(a), symbolic_, numeric_, &common_) ==
-            0 ||
+  bool RefactorIsSound(const SpMat& a, bool* interrupted) {
+    // On an interrupt the worker keeps both objects (interruptible_klu.h): analysed again next.
+    if (!RefactorInterruptibly(a, &symbolic_, &numeric_, &common_, interrupted) ||
         common_.status != KLU_OK) {
       return false;  // a zero pivot in the old order: the values are partly undefined now
     }
@@ -356,12 +368,9 @@ class KluSolver final : public PatternTrackingSolver {
     return klu_rcond(symbolic_, numeric_, &common_) != 0 && common_.rcond >= kMinRefactorRcond;
   }
 
-  // KLU's C API takes non-const pointers but only reads the matrix; `a` is the base class's
-  // private compressed copy, with int indices like KLU's.
+  // KLU is called through interruptible_klu.h on the base class's private compressed copy, with
+  // int indices like KLU's.
   static_assert(std::is_same_v<SpMat::StorageIndex, int>, "KLU's int API needs int indices");
-  static int* ColumnPointers(const SpMat& a) { return const_cast<int*>(a.outerIndexPtr()); }
-  static int* RowIndices(const SpMat& a) { return const_cast<int*>(a.innerIndexPtr()); }
-  static double* Values(const SpMat& a) { return const_cast<double*>(a.valuePtr()); }
 
   void FreeNumeric() {
     if (numeric_ != nullptr) klu_free_numeric(&numeric_, &common_);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "io/fclib/fclib_matrix.h"
 #include "io/fclib/hdf5_file.h"
@@ -251,7 +252,11 @@ Problem LoadFclibFile(const std::string& path, const std::map<std::string, std::
   const Layout layout = ReadLayout(file);
   Problem problem =
       layout.global ? ReadGlobal(file, layout, settings) : ReadLocal(file, layout, settings);
-  problem.scales = ScalesFrom(problem.parameters);
+  try {
+    problem.scales = ScalesFrom(problem.parameters);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path, "", e.what());  // a scale the data imply: none usable
+  }
   problem.loading = LoadingKind::kFixedLoad;
   problem.steps = 1;
   const std::string title = file.OptionalString(layout.root + "/info/title");
