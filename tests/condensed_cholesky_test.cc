@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
+#include "core/abandonable_work.h"
 #include "core/slow_work.h"
 #include "core/types.h"
 #include "solvers/equation_system.h"
-#include "solvers/interruptible_klu.h"
 #include "solvers/linear_solver.h"
 
 namespace cb {
@@ -199,7 +199,7 @@ TEST(CondensedCholeskyTest, ALargeFallbackIsReportedBeforeItStarts) {
   ASSERT_TRUE(cholmod->Factorize(small)) << cholmod->message();
   EXPECT_TRUE(g_reported.empty());
   const SpMat large = banded(12000);
-  ASSERT_GE(large.nonZeros(), kInterruptibleKluMinNonZeros);
+  ASSERT_GE(large.nonZeros(), kAbandonableMinNonZeros);
   ASSERT_TRUE(cholmod->Factorize(large)) << cholmod->message();
   SetSlowWorkListener(nullptr);
   ASSERT_EQ(g_reported.size(), 1u);

@@ -17,6 +17,11 @@
 
 namespace cb {
 
+// A factorisation (or analysis) of a matrix with fewer stored entries runs on the calling
+// thread: a thread costs ~0.1 ms, and such a factorisation takes well under a second. One
+// threshold for every solver that hands its work to a worker.
+constexpr long kAbandonableMinNonZeros = 200000;
+
 enum class WorkEnd {
   kFinished,                // `work` ran to its end (on the calling thread if no thread was had)
   kInterruptedBeforeStart,  // an interrupt was pending: neither `work` nor `release` runs

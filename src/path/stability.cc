@@ -122,7 +122,7 @@ void BorderedStiffness::Factorize(SpMat* penalised, SpMat* bordered, Use use) {
   auto job = std::make_shared<StiffnessJob>();
   job->solves = use == Use::kModesAndSolves;
   if (job->solves) job->lu = std::make_shared<Lu>();
-  const bool large = bordered->nonZeros() >= kInterruptibleStiffnessMinNonZeros;
+  const bool large = bordered->nonZeros() >= kAbandonableMinNonZeros;
   const Eigen::Index rows = bordered->rows();
   job->penalised.swap(*penalised);  // taken over, not copied
   job->bordered.swap(*bordered);

@@ -31,9 +31,6 @@
 
 namespace cb {
 
-// A with fewer stored entries is factorised on the calling thread.
-constexpr Eigen::Index kInterruptibleStiffnessMinNonZeros = 200000;
-
 // The worker thread's name (at most 15 characters).
 constexpr const char* kInterruptibleStiffnessThreadName = "stiffness-fact";
 

@@ -11,11 +11,11 @@
 #include <string>
 #include <utility>
 
+#include "core/abandonable_work.h"
 #include "core/finite.h"
 #include "core/slow_work.h"
 #include "core/sparse.h"
 #include "solvers/condensed_system.h"
-#include "solvers/interruptible_klu.h"
 #include "solvers/jacobian_blocks.h"
 
 namespace cb {
@@ -143,7 +143,7 @@ class CondensedCholeskySolver final : public LinearSolver {
   // A fall-back factorisation of a large matrix may cost minutes (a 3-D system's fill): the
   // program is told before it starts (core/slow_work.h).
   void ReportLargeFallback(const SpMat& a) const {
-    if (a.nonZeros() < kInterruptibleKluMinNonZeros) return;
+    if (a.nonZeros() < kAbandonableMinNonZeros) return;
     ReportSlowWork({name(), fallback_->name(), a.rows(), a.nonZeros()});
   }
 

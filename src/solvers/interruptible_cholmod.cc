@@ -40,7 +40,7 @@ CholmodFactor AnalyseHere(Cholmod* cholmod, SpMat* lower, int* permutation) {
 CholmodFactor AnalyseInterruptibly(Cholmod* cholmod, SpMat* lower, const int* permutation,
                                    bool* interrupted) {
   *interrupted = false;
-  if (lower->nonZeros() < kInterruptibleCholmodMinNonZeros) {
+  if (lower->nonZeros() < kAbandonableMinNonZeros) {
     std::vector<int> order;
     if (permutation != nullptr) order.assign(permutation, permutation + lower->rows());
     return AnalyseHere(cholmod, lower, permutation != nullptr ? order.data() : nullptr);
@@ -65,7 +65,7 @@ CholmodFactor AnalyseInterruptibly(Cholmod* cholmod, SpMat* lower, const int* pe
 bool FactorizeInterruptibly(Cholmod* cholmod, SpMat* lower, CholmodFactor* factor,
                             bool* interrupted) {
   *interrupted = false;
-  if (lower->nonZeros() < kInterruptibleCholmodMinNonZeros) {
+  if (lower->nonZeros() < kAbandonableMinNonZeros) {
     cholmod_sparse view = LowerTriangleView(*lower);
     return cholmod->Factorize(&view, *factor);
   }

@@ -48,7 +48,7 @@ void FreeJob(Job* job) {
 klu_symbolic* AnalyseInterruptibly(const SpMat& a, klu_common* common, bool* interrupted) {
   *interrupted = false;
   const int n = static_cast<int>(a.rows());
-  if (a.nonZeros() < kInterruptibleKluMinNonZeros) {
+  if (a.nonZeros() < kAbandonableMinNonZeros) {
     return klu_analyze(n, const_cast<int*>(a.outerIndexPtr()), const_cast<int*>(a.innerIndexPtr()),
                        common);
   }
@@ -71,7 +71,7 @@ klu_symbolic* AnalyseInterruptibly(const SpMat& a, klu_common* common, bool* int
 bool RefactorInterruptibly(const SpMat& a, klu_symbolic** symbolic, klu_numeric** numeric,
                            klu_common* common, bool* interrupted) {
   *interrupted = false;
-  if (a.nonZeros() < kInterruptibleKluMinNonZeros) {
+  if (a.nonZeros() < kAbandonableMinNonZeros) {
     return klu_refactor(const_cast<int*>(a.outerIndexPtr()), const_cast<int*>(a.innerIndexPtr()),
                         const_cast<double*>(a.valuePtr()), *symbolic, *numeric, common) != 0;
   }
@@ -107,7 +107,7 @@ bool RefactorInterruptibly(const SpMat& a, klu_symbolic** symbolic, klu_numeric*
 klu_numeric* FactorInterruptibly(const SpMat& a, klu_symbolic** symbolic, klu_common* common,
                                  bool* interrupted) {
   *interrupted = false;
-  if (a.nonZeros() < kInterruptibleKluMinNonZeros) return FactorHere(a, *symbolic, common);
+  if (a.nonZeros() < kAbandonableMinNonZeros) return FactorHere(a, *symbolic, common);
   const std::shared_ptr<Job> job = CopyToJob(a, *common, true);
   job->symbolic = *symbolic;
   const WorkEnd end = RunAbandonably(

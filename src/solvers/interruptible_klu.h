@@ -16,10 +16,6 @@
 
 namespace cb {
 
-// Matrices with fewer stored entries are factorised on the calling thread (a thread costs
-// ~0.1 ms; such a factorisation takes well under a second).
-constexpr Eigen::Index kInterruptibleKluMinNonZeros = 200000;
-
 // The worker threads' names (at most 15 characters).
 constexpr const char* kInterruptibleKluThreadName = "klu-factor";
 constexpr const char* kInterruptibleKluAnalysisThreadName = "klu-analyse";
