@@ -5,8 +5,6 @@
 #include <limits>
 #include <string>
 
-#include "core/huge_pages.h"
-
 namespace cb {
 
 struct StepEquationSystem::PatternCache {
@@ -161,7 +159,7 @@ void StepEquationSystem::BuildPattern() {
                             2 * static_cast<std::size_t>(gap_jacobian_.nonZeros()) +
                             2 * static_cast<std::size_t>(l.d) + 6 * static_cast<std::size_t>(l.nc) +
                             4;
-  ReserveOnHugePages(&e, bound);
+  e.reserve(bound);
   cache.first_stiffness = e.size();
   e.insert(e.end(), stiffness_entries.begin(), stiffness_entries.end());
   cache.first_curvature = e.size();

@@ -7,8 +7,6 @@
 #include <utility>
 #include <vector>
 
-#include "core/huge_pages.h"
-
 namespace cb {
 
 namespace {
@@ -30,19 +28,12 @@ std::pair<std::vector<int>, std::vector<int>> EntriesByColumn(
   for (int j = 0; j < cols; ++j) start[j + 1] += start[j];
   std::vector<int> next(start.begin(), start.end() - 1);
   std::vector<int> numbers;
-  ReserveOnHugePages(&numbers, entries.size());
+  numbers.reserve(entries.size());
   numbers.resize(entries.size());
   for (std::size_t k = 0; k < entries.size(); ++k) {
     numbers[next[entries[k].second]++] = static_cast<int>(k);
   }
   return {std::move(start), std::move(numbers)};
-}
-
-// Huge pages for a compressed matrix's index and value arrays, before they are written.
-void AdviseStorage(SpMat* m) {
-  const auto nnz = static_cast<std::size_t>(m->nonZeros());
-  AdviseHugePages(m->innerIndexPtr(), sizeof(int) * nnz);
-  AdviseHugePages(m->valuePtr(), sizeof(double) * nnz);
 }
 
 }  // namespace
@@ -70,12 +61,11 @@ ScatterPattern::ScatterPattern(int rows, int cols, const std::vector<Entry>& ent
     outer[j + 1] = outer[j] + distinct;
   }
   pattern_.resizeNonZeros(outer[cols]);
-  AdviseStorage(&pattern_);
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + outer[cols], 0.0);
   int* inner = pattern_.innerIndexPtr();
   std::fill(seen_in.begin(), seen_in.end(), -1);
   std::vector<int> place(rows, 0);  // a row's slot in the current column
-  ReserveOnHugePages(&slots_, entries.size());
+  slots_.reserve(entries.size());
   slots_.resize(entries.size());
   for (int j = 0; j < cols; ++j) {
     int end = outer[j];
@@ -105,22 +95,8 @@ void ScatterPattern::Reset(SpMat* m) const {
       // for zero bytes; UBSan.)
       (pattern_.nonZeros() == 0 || std::memcmp(pattern_.innerIndexPtr(), m->innerIndexPtr(),
                                                sizeof(int) * pattern_.nonZeros()) == 0);
-  if (!same) CopyOnHugePages(pattern_, m);
+  if (!same) *m = pattern_;
   std::fill(m->valuePtr(), m->valuePtr() + m->nonZeros(), 0.0);
-}
-
-void CopyOnHugePages(const SpMat& from, SpMat* to) {
-  if (!from.isCompressed()) {
-    *to = from;
-    to->makeCompressed();
-    return;
-  }
-  to->resize(from.rows(), from.cols());
-  to->resizeNonZeros(from.nonZeros());
-  AdviseStorage(to);
-  std::copy_n(from.outerIndexPtr(), from.outerSize() + 1, to->outerIndexPtr());
-  std::copy_n(from.innerIndexPtr(), from.nonZeros(), to->innerIndexPtr());
-  std::copy_n(from.valuePtr(), from.nonZeros(), to->valuePtr());
 }
 
 void AppendBlockEntries(const SpMat& block, int row_offset, int col_offset, bool transpose,

@@ -39,10 +39,6 @@ class ScatterPattern {
   std::vector<int> slots_;
 };
 
-// *to = from in compressed form, the storage of a large matrix advised onto huge pages
-// (core/huge_pages.h) before the copy touches it. `to` must not be `from`.
-void CopyOnHugePages(const SpMat& from, SpMat* to);
-
 // Entries of a sparse block placed at (row_offset, col_offset) of a larger matrix, optionally
 // transposed, in the order of the block's compressed storage.
 void AppendBlockEntries(const SpMat& block, int row_offset, int col_offset, bool transpose,

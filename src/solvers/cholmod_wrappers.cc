@@ -4,25 +4,7 @@
 
 #include <utility>
 
-#include "core/huge_pages.h"
-
 namespace cb {
-namespace {
-
-// CHOLMOD's large blocks (the factor, the supernodal update matrix, the solves' workspace) on
-// huge pages where the system offers them (core/huge_pages.h). Installed during static
-// initialisation, before any thread can call SuiteSparse; the hooks return plain malloc blocks,
-// so a block allocated before stays valid with the same free.
-bool InstallHugePageAllocator() {
-  SuiteSparse_config.malloc_func = HugePageMalloc;
-  SuiteSparse_config.calloc_func = HugePageCalloc;
-  SuiteSparse_config.realloc_func = HugePageRealloc;
-  return true;
-}
-
-[[maybe_unused]] const bool kHugePageAllocatorInstalled = InstallHugePageAllocator();
-
-}  // namespace
 
 CholmodFactor::CholmodFactor(CholmodFactor&& other) noexcept
     : factor_(std::exchange(other.factor_, nullptr)), common_(other.common_) {}

@@ -63,7 +63,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       return false;
     }
     if (!analysed_ || !SamePattern(m)) {
-      CopyOnHugePages(m, &jacobian_);
+      jacobian_ = m;
       AnalysePattern();
       analysed_ = true;
     } else {

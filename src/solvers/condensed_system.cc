@@ -9,7 +9,6 @@
 #include <limits>
 #include <utility>
 
-#include "core/huge_pages.h"
 #include "solvers/interruptible_cholmod.h"
 
 namespace cb {
@@ -39,7 +38,7 @@ void CondensedSystem::Analyse(JacobianBlocks blocks) {
     num_entries += k * (k + 1) / 2;
   }
   std::vector<ScatterPattern::Entry> kc_entries;
-  ReserveOnHugePages(&kc_entries, num_entries);  // filled once, without regrowing
+  kc_entries.reserve(num_entries);  // filled once, without regrowing
   for (const JacobianBlocks::Entry& a : blocks_.stiffness_lower)
     kc_entries.emplace_back(a.row, a.col);
   for (int p = 0; p < nc; ++p) {

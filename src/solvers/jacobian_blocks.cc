@@ -3,8 +3,6 @@
 #include <cstddef>
 #include <utility>
 
-#include "core/huge_pages.h"
-
 namespace cb {
 namespace {
 
@@ -122,7 +120,7 @@ std::optional<JacobianBlocks> FindJacobianBlocks(const SpMat& jacobian, int num_
   blocks.e_slot.assign(num_pairs, -1);
   blocks.da_slot.assign(num_pairs, -1);
   blocks.db_slot.assign(num_pairs, -1);
-  ReserveOnHugePages(&blocks.stiffness_lower, CountLowerStiffness(jacobian, num_dofs));
+  blocks.stiffness_lower.reserve(CountLowerStiffness(jacobian, num_dofs));
   PairEntries g_rows(num_pairs), h_cols(num_pairs);
   if (!ClassifyEntries(jacobian, &blocks, &g_rows, &h_cols)) return std::nullopt;
   if (!PairUp(g_rows, h_cols, &blocks)) return std::nullopt;
