@@ -28,8 +28,11 @@ SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& s
   SolverSummary summary;
   result->details["reduced_newton"] = std::to_string(1);
   if (!reduced.Prepare(*x)) {
-    summary.status = Status::kFailed;
-    summary.message = "reduced Newton: the interior stiffness A_ii is not positive definite";
+    const bool interrupted = reduced.elimination().interrupted();
+    summary.status = interrupted ? Status::kStoppedByCaller : Status::kFailed;
+    summary.message = interrupted
+                          ? "reduced Newton: the factorisation of A + D0 abandoned on an interrupt"
+                          : "reduced Newton: the interior stiffness A_ii is not positive definite";
     result->status = summary.status;
     result->message = summary.message;
     result->point = PointFromScaled(system.step(), l, *x);

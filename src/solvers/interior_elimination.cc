@@ -57,10 +57,12 @@ Mat ContactStiffness(const JacobianBlocks& blocks, const std::vector<int>& conta
 
 bool InteriorElimination::Factorize(const SpMat& jacobian, int num_dofs, int num_pairs) {
   uses_contact_block_ = false;
+  interrupted_ = false;
   if (FactorizeByBlock(jacobian, num_dofs, num_pairs)) {
     uses_contact_block_ = true;
     return true;
   }
+  if (interrupted_) return false;
   return FactorizeSimplicial(jacobian, num_dofs, num_pairs);
 }
 
@@ -80,10 +82,12 @@ bool InteriorElimination::FactorizeByBlock(const SpMat& jacobian, int num_dofs, 
   block_ = std::make_unique<BlockRoute>();
   block_->kc = kc.pattern();
   block_->factor.Analyse(*blocks, entries, kc.slots(), &block_->kc);
-  if (!block_->factor.possible()) return false;
+  interrupted_ = block_->factor.interrupted();
+  if (interrupted_ || !block_->factor.possible()) return false;
   const std::vector<double> no_springs(num_pairs, 0.0);
   // M = S_cc alone may be singular (a body held by its contacts only); S_cc is what is read.
   block_->factor.Factorize(*blocks, jacobian.valuePtr(), no_springs, kc.slots(), &block_->kc);
+  interrupted_ = block_->factor.interrupted();
   const Mat* s_cc = block_->factor.stiffness_schur_complement();
   if (s_cc == nullptr || block_->factor.contact_dofs() != contact_dofs_) return false;
   const int c = static_cast<int>(contact_dofs_.size());

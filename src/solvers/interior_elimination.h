@@ -29,7 +29,9 @@ class InteriorElimination {
   InteriorElimination& operator=(const InteriorElimination&) = delete;
 
   // Factorises at the step Jacobian `jacobian` (block form of jacobian_blocks.h with d dofs and
-  // nc pairs). False when it has not the block form or A_ii is not positive definite.
+  // nc pairs). False when it has not the block form, A_ii is not positive definite, or an
+  // interrupt abandoned the contact-block factorisation (then interrupted(); no fall-back is
+  // started: interruptible_cholmod.h).
   bool Factorize(const SpMat& jacobian, int num_dofs, int num_pairs);
   // The contact dofs, increasing: the unknowns du_c.
   const std::vector<int>& contact_dofs() const { return contact_dofs_; }
@@ -41,6 +43,8 @@ class InteriorElimination {
   bool Recover(const Vec& du_c, Vec* du);
   // Whether the contact-block factor is used (else the simplicial fallback).
   bool uses_contact_block() const { return uses_contact_block_; }
+  // Whether the last Factorize was abandoned on an interrupt.
+  bool interrupted() const { return interrupted_; }
 
  private:
   struct BlockRoute;  // the contact-block factor's state (SuiteSparse only)
@@ -51,6 +55,7 @@ class InteriorElimination {
   std::vector<int> interior_dofs_;
   Mat correction_;
   bool uses_contact_block_ = false;
+  bool interrupted_ = false;
   std::unique_ptr<BlockRoute> block_;
   // The fallback: A_ii's factor, A_ic (dense) and A_ii^-1 b_i of the last Condense.
   Eigen::SimplicialLDLT<SpMat, Eigen::Lower> interior_factor_;
