@@ -25,7 +25,8 @@ bool ReducedStepSystem::Applies(const StepProblem& step, const std::string& opti
 ReducedStepSystem::ReducedStepSystem(StepEquationSystem& full)
     : full_(full),
       structure_{0, full.layout().nc,
-                 full.structure() != nullptr ? full.structure()->coupling : 1.0} {}
+                 full.structure() != nullptr ? full.structure()->coupling : 1.0,
+                 /*dense_stiffness=*/true} {}
 
 bool ReducedStepSystem::Prepare(const Vec& x0) {
   const StepEquationLayout& l = full_.layout();

@@ -43,7 +43,7 @@ class CondensedCholeskySolver final : public LinearSolver {
       return;
     }
     if (!has_structure_ || s->d != structure_.d || s->nc != structure_.nc ||
-        s->coupling != structure_.coupling) {
+        s->coupling != structure_.coupling || s->dense_stiffness != structure_.dense_stiffness) {
       analysed_ = false;
     }
     structure_ = *s;
@@ -54,9 +54,11 @@ class CondensedCholeskySolver final : public LinearSolver {
     CheckSquare(a, "cholmod");
     factorized_ = false;
     use_fallback_ = false;
-    // Small systems go to the LU: there its refactorisation beats the condensation's fixed
-    // costs (docs/linear-solvers.md, "cholmod").
-    if (!has_structure_ || structure_.d < kMinCondensedSize) return FallbackFactorize(a);
+    // Small sparse systems go to the LU: there its refactorisation beats the condensation's
+    // fixed costs (docs/linear-solvers.md, "cholmod"); a dense A does not.
+    if (!has_structure_ || (structure_.d < kMinCondensedSize && !structure_.dense_stiffness)) {
+      return FallbackFactorize(a);
+    }
     const SpMat& m = Compressed(a, &uncompressed_scratch_);
     if (!AllFinite(m.valuePtr(), m.nonZeros())) {
       message_ = "cholmod: matrix has a non-finite entry";

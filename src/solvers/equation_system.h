@@ -22,6 +22,9 @@ struct JacobianStructure {
   int d = 0;
   int nc = 0;
   double coupling = 1.0;
+  // A is dense (the reduced system's A_cc + T): a sparse LU of it has no sparsity to exploit,
+  // so a condensing solver condenses whatever d (docs/linear-solvers.md, "cholmod").
+  bool dense_stiffness = false;
 };
 
 class EquationSystem {
