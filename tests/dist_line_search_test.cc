@@ -38,7 +38,10 @@ TEST(DistLineSearchTest, TheDistributedNewtonSearchesAsTheSerialOne) {
   const StepProblem step = f.Step();
   for (const StartKind kind : {StartKind::kCold, StartKind::kWarm}) {
     SCOPED_TRACE(ToString(kind));
-    const StepResult serial = MakeImplicitFb({})->Solve(step, StartFor(f, kind));
+    // The serial full route (Newton on all the unknowns), the method the distributed one runs.
+    FormulationConfig full_route;
+    full_route.options["reduced_newton"] = "0";
+    const StepResult serial = MakeImplicitFb(full_route)->Solve(step, StartFor(f, kind));
     const StepResult dist = MakeDistImplicitFb({})->Solve(step, StartFor(f, kind));
     ASSERT_EQ(serial.status, Status::kConverged) << serial.message;
     ASSERT_EQ(dist.status, Status::kConverged) << dist.message;

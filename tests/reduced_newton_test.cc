@@ -1,11 +1,15 @@
 // The reduced Newton of implicit-fb (option reduced_newton; formulations/common/
 // reduced_step_system.h): the same verified answer as the full route on P1, hertz-3d and a Q4
 // file; Hertz's closed form; the interior rows of (29) exact at every iterate; its Jacobian
-// against differences; and the refusal of steps it does not apply to.
+// against differences; its condensed block factorised by the condensed route whatever its size;
+// the time split it reports; the default (reduced where it applies, the full route elsewhere)
+// and the refusal, when it is required, of steps it does not apply to.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +22,8 @@
 #include "problems/hertz.h"
 #include "problems/problem.h"
 #include "refusal.h"
+#include "solvers/condensed_cholesky.h"
+#include "solvers/linear_solver.h"
 #include "solvers/newton.h"
 #include "source_tree.h"
 #include "verdict/verdict.h"
@@ -31,9 +37,15 @@ ImplicitFbOptions Reduced() {
   return o;
 }
 
+ImplicitFbOptions Full() {
+  ImplicitFbOptions o;
+  o.reduced_newton = false;
+  return o;
+}
+
 // Both routes verified, and the same u and r to `tol` relative to their sizes.
 void ExpectSameAnswer(const Problem& p, StartKind start, double tol) {
-  ImplicitFb full_route;
+  ImplicitFb full_route(Full());
   ImplicitFb reduced_route(Reduced());
   const fixtures::JudgedSolve full = fixtures::SolveAndJudge(p, full_route, p.load, start);
   const fixtures::JudgedSolve reduced = fixtures::SolveAndJudge(p, reduced_route, p.load, start);
@@ -182,7 +194,90 @@ TEST(ReducedNewtonTest, RefusesArcLengthStepsNamingTheOption) {
   EXPECT_FALSE(reduced.Accepts(step, &why));
   EXPECT_TRUE(testing_support::Names(why, {"reduced_newton"}));
   EXPECT_TRUE(ImplicitFb().Accepts(step));
+  EXPECT_TRUE(ImplicitFb(Full()).Accepts(step));
 }
+
+// One solve of `step` by `formulation` from the cold start.
+StepResult SolveCold(ImplicitFb& formulation, const StepProblem& step) {
+  return formulation.Solve(step, ColdReducedStep::Cold(), SolveControls{});
+}
+
+// By default the fixed-load step takes the reduced route and an arc-length step the full one;
+// reduced_newton = false takes the full route on both. Each answer verified.
+TEST(ReducedNewtonTest, DefaultIsReducedWhereItApplies) {
+  const Problem p = MakeProblem("block", {{"n", "10"}});
+  const StepProblem fixed{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
+                          p.scales};
+  const StepProblem arc{p.model.get(), ZeroState(*p.model), StepConstraint::ArcLength(0.1, 1.0),
+                        p.scales};
+  auto route = [](const StepResult& r) {
+    return r.details.count("route") != 0 && r.details.at("route") == "reduced";
+  };
+  ImplicitFb by_default, full(Full());
+  const StepResult a = SolveCold(by_default, fixed);
+  ASSERT_EQ(a.status, Status::kConverged) << a.message;
+  EXPECT_TRUE(route(a));
+  EXPECT_TRUE(Judge(fixed, a.point, 1e-8).verified);
+  const StepResult b = SolveCold(full, fixed);
+  ASSERT_EQ(b.status, Status::kConverged) << b.message;
+  EXPECT_FALSE(route(b));
+  EXPECT_TRUE(Judge(fixed, b.point, 1e-8).verified);
+  const StepResult c = SolveCold(by_default, arc);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  EXPECT_FALSE(route(c));
+}
+
+// The time split of a reduced solve: each piece present, non-negative, the factorisation part
+// of the preparation, and the pieces together within the solve's time.
+TEST(ReducedNewtonTest, ReportsItsTimeSplit) {
+  const Problem p = MakeProblem("block", {{"n", "40"}});
+  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
+                         p.scales};
+  ImplicitFb formulation(Reduced());
+  const StepResult r = SolveCold(formulation, step);
+  ASSERT_EQ(r.status, Status::kConverged) << r.message;
+  std::map<std::string, double> s;
+  for (const char* key : {"prepare_s", "factorization_s", "forward_sweep_s", "iterations_s",
+                          "recovery_s", "backward_sweep_s"}) {
+    ASSERT_EQ(r.details.count(key), 1U) << key;
+    s[key] = std::stod(r.details.at(key));
+    EXPECT_GE(s[key], 0.0) << key;
+  }
+  EXPECT_LE(s["factorization_s"] + s["forward_sweep_s"], s["prepare_s"]);
+  EXPECT_LE(s["backward_sweep_s"], s["recovery_s"]);
+  EXPECT_LE(s["prepare_s"] + s["iterations_s"] + s["recovery_s"], r.time_s);
+}
+
+#ifdef CONTACTBENCH_HAVE_SUITESPARSE
+// The reduced Jacobian's A_cc + T is dense: the condensing solver condenses it even below the
+// size from which a sparse system is condensed (no fall-back LU), and solves it to the
+// refinement's backward error.
+TEST(ReducedNewtonTest, DenseBlockTakesTheCondensedRoute) {
+  const Problem p = MakeProblem("block", {{"n", "40"}});
+  ColdReducedStep cold(p);
+  ReducedStepSystem& reduced = cold.reduced;
+  ASSERT_TRUE(reduced.Prepare(cold.start.x));
+  ASSERT_LT(reduced.num_contact_dofs(), 1000);
+  ASSERT_TRUE(reduced.structure()->dense_stiffness);
+  const Vec z = reduced.Reduce(cold.start.x);
+  SpMat j;
+  reduced.Jacobian(z, &j);
+  std::unique_ptr<LinearSolver> solver = MakeLinearSolver("cholmod");
+  solver->SetStructure(reduced.structure());
+  ASSERT_TRUE(solver->Factorize(j)) << solver->message();
+  const Vec b = Vec::LinSpaced(j.rows(), 1.0, 2.0);
+  Vec x;
+  ASSERT_TRUE(solver->Solve(b, &x)) << solver->message();
+  const CondensedSolverStats* stats = CondensedStats(*solver);
+  ASSERT_NE(stats, nullptr);
+  EXPECT_EQ(stats->condensed_factorizations, 1);
+  EXPECT_EQ(stats->fallback_factorizations, 0);
+  const Vec residual = b - j * x;
+  EXPECT_LE(residual.lpNorm<Eigen::Infinity>(),
+            1e-12 * (Mat(j).cwiseAbs().rowwise().sum().maxCoeff() * x.lpNorm<Eigen::Infinity>() +
+                     b.lpNorm<Eigen::Infinity>()));
+}
+#endif
 
 }  // namespace
 }  // namespace cb

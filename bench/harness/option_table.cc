@@ -167,8 +167,9 @@ std::vector<Option> MakeOptions() {
        "memory cgroup's limit, RLIMIT_AS); without it such a problem is refused at once",
        nullptr, [](O, S, A* a) { a->allow_memory = true; }},
       {"--option", "KEY=VALUE", kRun, Need::kOptional, true,
-       "a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min, reduced_newton=1: "
-       "Newton on the contact unknowns alone, docs/method.md); given as FORMULATION:KEY=VALUE, "
+       "a formulation's own setting (e.g. implicit-fb gamma_tol, rho_min, reduced_newton=0: "
+       "Newton on all the unknowns, not the contact unknowns alone, docs/method.md); given as "
+       "FORMULATION:KEY=VALUE, "
        "only for the formulation named",
        nullptr, [](O o, S v, A* a) { FormulationOption(o, v, false, a); }},
       {"--option", "FORMULATION:KEY=VALUE", kCompare, Need::kOptional, true,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/timer.h"
 #include "formulations/common/reduced_step_system.h"
 
 namespace cb {
@@ -18,6 +19,24 @@ double ReducedComplementarityResidual(const Vec& z, int first_g, int nc) {
   return comp;
 }
 
+std::string Seconds(double s) { return std::to_string(s); }
+
+// Whether every full row of `system` at x is within max(residual_tol, its rounding floor).
+bool FullRowsHold(StepEquationSystem& system, const Vec& x, double residual_tol) {
+  Vec f, floor;
+  if (!system.Residual(x, &f)) return false;
+  if (!system.ResidualFloor(x, &floor)) floor = Vec::Zero(f.size());
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    if (!(std::abs(f[i]) <= std::max(residual_tol, floor[i]))) return false;
+  }
+  return true;
+}
+
+SolveCounts operator+(const SolveCounts& a, const SolveCounts& b) {
+  return {a.iterations + b.iterations, a.residual_evals + b.residual_evals,
+          a.jacobian_evals + b.jacobian_evals, a.linear_solves + b.linear_solves};
+}
+
 }  // namespace
 
 SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
@@ -26,8 +45,11 @@ SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& s
   ReducedStepSystem reduced(system);
   StepSolveBookkeeping bookkeeping(controls, result);
   SolverSummary summary;
-  result->details["reduced_newton"] = std::to_string(1);
-  if (!reduced.Prepare(*x)) {
+  result->details["route"] = "reduced";
+  Stopwatch prepare;
+  const bool prepared = reduced.Prepare(*x);
+  result->details["prepare_s"] = Seconds(prepare.Seconds());
+  if (!prepared) {
     const bool interrupted = reduced.elimination().interrupted();
     summary.status = interrupted ? Status::kStoppedByCaller : Status::kFailed;
     summary.message = interrupted
@@ -43,16 +65,50 @@ SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& s
     return ReducedComplementarityResidual(z, first_g, nc);
   };
   Vec z = reduced.Reduce(*x);
+  Stopwatch iterations;
   summary = solver.Solve(reduced, &z, bookkeeping.Observer(comp_res));
+  result->details["iterations_s"] = Seconds(iterations.Seconds());
   bookkeeping.MarkTimeLimit(&summary);
+  Stopwatch recovery;
   if (!reduced.Expand(z, x) && summary.status == Status::kConverged) {
     summary.status = Status::kFailed;
     summary.message = "reduced Newton: the interior could not be recovered";
   }
+  result->details["recovery_s"] = Seconds(recovery.Seconds());
+  const ReducedStepTimes& times = reduced.times();
+  result->details["factorization_s"] = Seconds(times.factorization_s);
+  result->details["forward_sweep_s"] = Seconds(times.forward_sweep_s);
+  result->details["backward_sweep_s"] = Seconds(times.backward_sweep_s);
   bookkeeping.FillResult(system, *x, summary);
   result->details["interior_by_contact_block"] =
       std::to_string(reduced.elimination().uses_contact_block() ? 1 : 0);
   return summary;
+}
+
+SolverSummary RunReducedOrFullStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
+                                         const SolveControls& controls, double residual_tol,
+                                         StepResult* result) {
+  const Vec start = *x;
+  const Stopwatch clock;
+  const SolverSummary reduced = RunReducedStepSolver(solver, system, x, controls, result);
+  if (reduced.status == Status::kStoppedByCaller || reduced.status == Status::kTimeLimit) {
+    return reduced;
+  }
+  const bool holds = reduced.status == Status::kConverged && FullRowsHold(system, *x, residual_tol);
+  if (holds) return reduced;
+  const std::string why = reduced.status == Status::kConverged
+                              ? "its answer leaves full rows above the tolerance"
+                              : reduced.message;
+  const SolveCounts spent = result->counts;
+  SolveControls rest = controls;
+  if (rest.time_limit_s > 0.0)
+    rest.time_limit_s = std::max(1e-3, rest.time_limit_s - clock.Seconds());
+  *x = start;
+  SolverSummary full = RunStepEquationSolver(solver, system, x, rest, result);
+  result->counts = result->counts + spent;
+  result->message += " (the full route, after the reduced Newton: " + why + ")";
+  result->details["route"] = "full after reduced";
+  return full;
 }
 
 }  // namespace cb

@@ -2,7 +2,26 @@
 
 #include <algorithm>
 
+#include "core/timer.h"
+
 namespace cb {
+namespace {
+
+// Whether some dof of the body is on no pair (at the step's base state): an interior to
+// eliminate. A local LCP (an FCLIB file's W) has none, and the reduction would only add work.
+bool HasInterior(const StepProblem& step) {
+  SpMat g;
+  step.model->GapJacobian(step.base.u, &g);
+  std::vector<bool> on_a_pair(g.cols(), false);
+  for (int k = 0; k < g.outerSize(); ++k) {
+    for (SpMat::InnerIterator it(g, k); it; ++it) {
+      if (it.value() != 0.0) on_a_pair[it.col()] = true;
+    }
+  }
+  return std::find(on_a_pair.begin(), on_a_pair.end(), false) != on_a_pair.end();
+}
+
+}  // namespace
 
 bool ReducedStepSystem::Applies(const StepProblem& step, const std::string& option,
                                 std::string* why) {
@@ -14,6 +33,8 @@ bool ReducedStepSystem::Applies(const StepProblem& step, const std::string& opti
     reason = "the step is not at a fixed load (an arc-length path)";
   } else if (step.num_pairs() == 0) {
     reason = "the problem has no contact pairs";
+  } else if (!HasInterior(step)) {
+    reason = "every dof is on a contact pair (no interior to eliminate)";
   }
   if (reason.empty()) return true;
   if (why != nullptr)
@@ -32,7 +53,9 @@ bool ReducedStepSystem::Prepare(const Vec& x0) {
   const StepEquationLayout& l = full_.layout();
   x0_ = x0;
   full_.Jacobian(x0, &full_jacobian_);
+  Stopwatch factorization;
   if (!elimination_.Factorize(full_jacobian_, l.d, l.nc)) return false;
+  times_.factorization_s = factorization.Seconds();
   contact_dofs_ = elimination_.contact_dofs();
   const int c = num_contact_dofs();
   structure_.d = c;
@@ -54,7 +77,9 @@ bool ReducedStepSystem::Prepare(const Vec& x0) {
   if (!full_.Residual(xb, &full_residual_)) return false;
   const Vec b = full_residual_.head(l.d);
   Vec b_tilde;
+  Stopwatch forward_sweep;
   if (!elimination_.Condense(b, &b_tilde)) return false;
+  times_.forward_sweep_s = forward_sweep.Seconds();
   offset_.resize(c);
   for (int k = 0; k < c; ++k) offset_[k] = b_tilde[k] - b[contact_dofs_[k]];
   return true;
@@ -77,7 +102,9 @@ bool ReducedStepSystem::Expand(const Vec& z, Vec* x) {
   const StepEquationLayout& l = full_.layout();
   Lift(z);
   Vec du;
+  Stopwatch backward_sweep;
   if (!elimination_.Recover(z.head(num_contact_dofs()), &du)) return false;
+  times_.backward_sweep_s = backward_sweep.Seconds();
   *x = lifted_;
   x->segment(l.du(), l.d) = du;
   return true;

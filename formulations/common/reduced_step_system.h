@@ -21,6 +21,14 @@
 
 namespace cb {
 
+// Where a reduced solve spends its time (wall seconds): the pieces of the floor of
+// docs/findings.md, "Speed to the floor" (one factorisation, one sweep each way).
+struct ReducedStepTimes {
+  double factorization_s = 0.0;   // the elimination's factorisation of A + D0 (and T)
+  double forward_sweep_s = 0.0;   // Condense: b~_c
+  double backward_sweep_s = 0.0;  // Recover: the interior of the answer
+};
+
 class ReducedStepSystem final : public EquationSystem {
  public:
   // Whether the reduction applies to `step`; otherwise `why` says why, naming `option` (the
@@ -47,6 +55,7 @@ class ReducedStepSystem final : public EquationSystem {
 
   int num_contact_dofs() const { return static_cast<int>(contact_dofs_.size()); }
   const InteriorElimination& elimination() const { return elimination_; }
+  const ReducedStepTimes& times() const { return times_; }
 
  private:
   // lifted_ from z.
@@ -66,11 +75,23 @@ class ReducedStepSystem final : public EquationSystem {
   SpMat full_jacobian_, pattern_;
   std::vector<std::pair<int, int>> entry_slots_;  // (full slot, reduced slot)
   std::vector<int> correction_slots_;             // T(a, b) at [b * c + a]
+  ReducedStepTimes times_;
 };
 
 // RunStepEquationSolver (step_equations.h) through the reduced system of `system` from the full
-// start *x; *x is the full answer. details["reduced_newton"] = "1".
+// start *x; *x is the full answer. details["route"] = "reduced", and the time split in seconds:
+// details "prepare_s" (the first Jacobian, the factorisation, b~_c), "factorization_s",
+// "forward_sweep_s", "iterations_s", "recovery_s", "backward_sweep_s".
 SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
                                    const SolveControls& controls, StepResult* result);
+
+// The reduced solve, and where it did not end at a point whose full rows hold (each
+// |F_i| <= max(residual_tol, its rounding floor): a failure, a limit, or the interior's rounding
+// of a badly scaled body), the full route from the same start in the time left, its counts
+// added to the reduced solve's and the reason in its message; details["route"] = "full after
+// reduced" then. An interrupted or timed-out reduced solve is returned as it is.
+SolverSummary RunReducedOrFullStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
+                                         const SolveControls& controls, double residual_tol,
+                                         StepResult* result);
 
 }  // namespace cb

@@ -61,12 +61,12 @@ std::string ImplicitFb::settings() const {
   std::ostringstream out;
   out << "solver=" << options_.solver << ";eta=" << static_cast<int>(options_.eta)
       << ";linear_solver=" << options_.solver_options.linear_solver;
-  if (options_.reduced_newton) out << ";reduced_newton=1";
+  if (options_.reduced_newton) out << ";reduced_newton=" << (*options_.reduced_newton ? 1 : 0);
   return out.str();
 }
 
 bool ImplicitFb::DoAccepts(const StepProblem& step, std::string* why) const {
-  return !options_.reduced_newton ||
+  return !options_.reduced_newton.value_or(false) ||
          ReducedStepSystem::Applies(step, "implicit-fb:reduced_newton", why);
 }
 
@@ -77,8 +77,12 @@ void ImplicitFb::DoSolve(const StepProblem& step, const StartPoint& start,
   const StepEquationLayout& l = system.layout();
   Vec x = initial.x;
 
-  if (options_.reduced_newton) {
+  if (options_.reduced_newton.value_or(false)) {
     RunReducedStepSolver(solvers_.For(start), system, &x, controls, result);
+  } else if (!options_.reduced_newton.has_value() &&
+             ReducedStepSystem::Applies(step, "implicit-fb:reduced_newton", nullptr)) {
+    RunReducedOrFullStepSolver(solvers_.For(start), system, &x, controls,
+                               options_.solver_options.residual_tol, result);
   } else {
     RunStepEquationSolver(solvers_.For(start), system, &x, controls, result);
   }
@@ -97,7 +101,9 @@ std::unique_ptr<Formulation> MakeImplicitFb(const FormulationConfig& config) {
   options.solver_options = config.solver_options;
   options.gamma_tol = reader.GetReal("gamma_tol", options.gamma_tol);
   options.rho_min = reader.GetReal("rho_min", options.rho_min);
-  options.reduced_newton = reader.GetBool("reduced_newton", options.reduced_newton);
+  const bool reduced_given = config.options.count("reduced_newton") != 0;
+  const bool reduced = reader.GetBool("reduced_newton", false);  // read either way: a known key
+  if (reduced_given) options.reduced_newton = reduced;
   reader.Finish();
   return std::make_unique<ImplicitFb>(options);
 }

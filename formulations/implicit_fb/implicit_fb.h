@@ -19,6 +19,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "formulations/common/config.h"
@@ -37,8 +38,10 @@ struct ImplicitFbOptions {
   SolverOptions solver_options;
   double gamma_tol = 1e-2;  // gamma_ of (37)
   double rho_min = 1e-3;    // rho_ of (42): rho0 = rho* if |rho*| > rho_, else rho_
-  // Newton on the contact unknowns alone (common/reduced_step_system.h); off by default.
-  bool reduced_newton = false;
+  // Newton on the contact unknowns alone (common/reduced_step_system.h): unset, wherever it
+  // applies (ReducedStepSystem::Applies); true, required (a step it does not apply to is
+  // refused); false, never.
+  std::optional<bool> reduced_newton;
 
   bool IsValid(std::string* why) const;
 };
