@@ -7,6 +7,8 @@
 #                                whole paths, Newton iteration / factorisation)
 #   formulation_step_benchmark   one replayed P2 / P3 step per formulation x start x step
 #   scaling_benchmark            P1 cold solve, n = 25 ... 400, every fixed-load formulation
+#   speed_floor_benchmark        P1 n = 100 ... 400 and hertz-3d n = 16 ... 40 cold, implicit-fb's
+#                                time split and floor against its full route and PETSc's best
 #
 # Repetitions: 3 (aggregates only: mean, median, stddev, cv, and the min and max every binary
 # adds, so each time is a median with its range), except where a benchmark fixes its own
@@ -28,7 +30,8 @@ if [[ "${SKIP_SETUP:-0}" != 1 ]]; then "$here/scripts/setup.sh" "$build" || exit
 mkdir -p "$out"
 
 status=0
-for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark; do
+for binary in implicit_fb_benchmark formulation_step_benchmark scaling_benchmark \
+  speed_floor_benchmark; do
   exe="$build/bin/$binary"
   if [[ ! -x "$exe" ]]; then
     echo "run_bench: $exe not built (BUILD_BENCHMARKS=OFF?)" >&2; status=1; continue

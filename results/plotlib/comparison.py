@@ -36,7 +36,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.patches import Patch  # noqa: E402
 
-from plotlib import headlines, histograms, problem_sets, quick, robustness, styles  # noqa: E402
+from plotlib import (  # noqa: E402
+    headlines, histograms, problem_sets, quick, robustness, speed, styles)
 # The shared pieces, named here too for the scripts and tests that read them as comparison.X.
 from plotlib.aggregation import (  # noqa: E402,F401
     PROBLEM_LABEL, SHIFT, TIME_UNIT_MS, aggregate, charged, comparison_sets, fmt, growth_exponent,
@@ -699,6 +700,7 @@ def write(results_dir):
     out += problem_sets.section(results_dir, figures_dir)
     out += targets_section(results_dir)
     out += scaling_section(results_dir, figures_dir)
+    out += speed.section(results_dir)
     out += step_benchmark_section(results_dir)
     path = os.path.join(results_dir, "COMPARISON.md")
     with open(path, "w") as f:
