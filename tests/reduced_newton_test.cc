@@ -227,6 +227,30 @@ TEST(ReducedNewtonTest, DefaultIsReducedWhereItApplies) {
   EXPECT_FALSE(route(c));
 }
 
+// hertz-3d with E = 1e14 from the warm start of `contactbench run` (the unloaded state): the
+// reduced route alone stagnates (the interior's rounding at that scale); by default the full
+// route then solves the step from the same start, its counts added to the reduced route's, and
+// its message says so.
+TEST(ReducedNewtonTest, FallsBackToTheFullRouteWhereTheReducedOneFails) {
+  const Problem p = MakeProblem("hertz-3d", {{"n", "8"}, {"nz", "8"}, {"youngs_modulus", "1e14"}});
+  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
+                         p.scales};
+  StartPoint warm;
+  warm.du = Vec::Zero(step.num_dofs());
+  warm.dlambda = p.load;
+  warm.r = Vec::Zero(step.num_pairs());
+  ImplicitFb required(Reduced()), by_default;
+  const StepResult alone = required.Solve(step, warm, SolveControls{});
+  ASSERT_FALSE(alone.status == Status::kConverged && Judge(step, alone.point, 1e-8).verified)
+      << "the case no longer makes the reduced route fail: " << alone.message;
+  const StepResult r = by_default.Solve(step, warm, SolveControls{});
+  ASSERT_EQ(r.status, Status::kConverged) << r.message;
+  EXPECT_TRUE(Judge(step, r.point, 1e-8).verified);
+  EXPECT_EQ(r.details.at("route"), "full after reduced");
+  EXPECT_GT(r.counts.iterations, alone.counts.iterations);
+  EXPECT_TRUE(testing_support::Names(r.message, {"full route", "reduced Newton"})) << r.message;
+}
+
 // The time split of a reduced solve: each piece present, non-negative, the factorisation part
 // of the preparation, and the pieces together within the solve's time.
 TEST(ReducedNewtonTest, ReportsItsTimeSplit) {
