@@ -20,7 +20,9 @@ def rows(bench):
     parts = b["run_name"].str.split("/")
     b["problem"], b["variant"] = parts.str[0], parts.str[1]
     b["n"] = parts.str[2].str.replace("n:", "", regex=False).astype(int)
-    return b[b["variant"].isin(VARIANTS)]
+    b = b[b["variant"].isin(VARIANTS)]
+    # P1 first, then hertz-3d; each by n (the interleaved run writes them in random order).
+    return b.sort_values(["problem", "n"], ascending=[True, True], kind="stable")
 
 
 def timed(row):
