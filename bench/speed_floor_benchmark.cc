@@ -76,8 +76,7 @@ void AddTimeSplit(const StepResult& result, double solve_s, benchmark::State& st
 
 // The cold fixed-load step of `problem` at mesh size n.
 StepProblem ColdStep(const Problem& p, StartPoint* cold) {
-  const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
-                         p.scales};
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load), p.scales};
   cold->kind = StartKind::kCold;
   cold->du = Vec::Zero(step.num_dofs());
   cold->dlambda = p.load;
@@ -156,11 +155,12 @@ int main(int argc, char** argv) {
   if (!bench::StartFormulationBenchmarks(&count, args.data())) return 1;
   const std::vector<std::pair<std::string, std::vector<int>>> cases = {{"block", {100, 200, 400}},
                                                                        {"hertz-3d", {16, 24, 40}}};
-  for (const auto& [problem, sizes] : cases) {
+  for (const auto& one_case : cases) {
+    const std::string problem = one_case.first;
     for (const Variant& variant : Variants()) {
       const FormulationInfo* info = FindFormulation(variant.formulation);
       const bool built = info != nullptr && info->available;
-      for (int n : sizes) {
+      for (int n : one_case.second) {
         auto* b = bench::RegisterWithRange((problem + "/" + variant.label).c_str(),
                                            [problem, variant, built](benchmark::State& state) {
                                              if (!built) {

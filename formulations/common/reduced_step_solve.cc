@@ -90,7 +90,7 @@ SolverSummary RunReducedOrFullStepSolver(EquationSolver& solver, StepEquationSys
                                          StepResult* result) {
   const Vec start = *x;
   const Stopwatch clock;
-  const SolverSummary reduced = RunReducedStepSolver(solver, system, x, controls, result);
+  SolverSummary reduced = RunReducedStepSolver(solver, system, x, controls, result);
   if (reduced.status == Status::kStoppedByCaller || reduced.status == Status::kTimeLimit) {
     return reduced;
   }
