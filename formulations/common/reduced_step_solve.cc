@@ -7,6 +7,7 @@
 
 #include "core/timer.h"
 #include "formulations/common/reduced_step_system.h"
+#include "solvers/solver_common.h"
 
 namespace cb {
 namespace {
@@ -25,11 +26,8 @@ std::string Seconds(double s) { return std::to_string(s); }
 bool FullRowsHold(StepEquationSystem& system, const Vec& x, double residual_tol) {
   Vec f, floor;
   if (!system.Residual(x, &f)) return false;
-  if (!system.ResidualFloor(x, &floor)) floor = Vec::Zero(f.size());
-  for (Eigen::Index i = 0; i < f.size(); ++i) {
-    if (!(std::abs(f[i]) <= std::max(residual_tol, floor[i]))) return false;
-  }
-  return true;
+  const bool has_floor = system.ResidualFloor(x, &floor);
+  return internal::WithinResidualFloor(f, has_floor ? &floor : nullptr, residual_tol);
 }
 
 SolveCounts operator+(const SolveCounts& a, const SolveCounts& b) {

@@ -130,6 +130,14 @@ void Finish(Status status, std::string message, double merit, const Vec& f,
   summary->final_residual_inf = InfNorm(f);
 }
 
+bool WithinResidualFloor(const Vec& f, const Vec* floor, double residual_tol) {
+  const bool has_floor = floor != nullptr && floor->size() == f.size();
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    if (!(std::abs(f[i]) <= std::max(residual_tol, has_floor ? (*floor)[i] : 0.0))) return false;
+  }
+  return true;
+}
+
 void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::string message,
                  double merit, const Vec& f, double residual_tol, SolverSummary* summary) {
   Vec floor;
@@ -138,11 +146,7 @@ void FinishStuck(EquationSystem& system, const Vec& x, Status status, std::strin
     ++summary->residual_evals;
     ++summary->jacobian_evals;
   }
-  bool within = has_floor && floor.size() == f.size();
-  for (Eigen::Index i = 0; within && i < f.size(); ++i) {
-    within = std::abs(f[i]) <= std::max(residual_tol, floor[i]);
-  }
-  if (within) {
+  if (has_floor && floor.size() == f.size() && WithinResidualFloor(f, &floor, residual_tol)) {
     Finish(Status::kConverged,
            "every row within its rounding floor, ||F||_inf above residual_tol (" + message + ")",
            merit, f, summary);

@@ -95,6 +95,9 @@ LineSearchResult BacktrackingLineSearch(EquationSystem& system, const SolverOpti
 
 // Fills the summary's final fields and status.
 void Finish(Status status, std::string message, double merit, const Vec& f, SolverSummary* summary);
+// Whether every |F_i| is within max(residual_tol, floor_i) (floor_i = 0 where `floor` is null or
+// of another size than f).
+bool WithinResidualFloor(const Vec& f, const Vec* floor, double residual_tol);
 // Finish for a solver that cannot go on at x (stagnation, a failed line search, the iteration
 // limit): kConverged instead of `status` when every |F_i| is within max(residual_tol, floor_i)
 // of EquationSystem::ResidualFloor, with `message` kept in the summary's message; the floor's
