@@ -248,6 +248,11 @@ TEST(ReducedNewtonTest, FallsBackToTheFullRouteWhereTheReducedOneFails) {
   EXPECT_TRUE(Judge(step, r.point, 1e-8).verified);
   EXPECT_EQ(r.details.at("route"), "full after reduced");
   EXPECT_GT(r.counts.iterations, alone.counts.iterations);
+  // One history for the step, numbered as its counts: 1, 2, ... through both routes.
+  ASSERT_EQ(r.history.size(), static_cast<std::size_t>(r.counts.iterations));
+  for (std::size_t k = 0; k < r.history.size(); ++k) {
+    EXPECT_EQ(r.history[k].iteration, static_cast<int>(k) + 1) << "record " << k;
+  }
   EXPECT_TRUE(testing_support::Names(r.message, {"full route", "reduced Newton"})) << r.message;
 }
 

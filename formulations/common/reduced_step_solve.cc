@@ -98,12 +98,18 @@ SolverSummary RunReducedOrFullStepSolver(EquationSolver& solver, StepEquationSys
                               ? "its answer leaves full rows above the tolerance"
                               : reduced.message;
   const SolveCounts spent = result->counts;
+  const std::size_t reduced_history = result->history.size();
   SolveControls rest = controls;
   if (rest.time_limit_s > 0.0)
     rest.time_limit_s = std::max(1e-3, rest.time_limit_s - clock.Seconds());
   *x = start;
   SolverSummary full = RunStepEquationSolver(solver, system, x, rest, result);
   result->counts = result->counts + spent;
+  // The full route's iterations numbered on from the reduced ones, so that the step's history
+  // (iterations.csv) counts as its counts do.
+  for (std::size_t k = reduced_history; k < result->history.size(); ++k) {
+    result->history[k].iteration += spent.iterations;
+  }
   result->message += " (the full route, after the reduced Newton: " + why + ")";
   result->details["route"] = "full after reduced";
   return full;

@@ -88,8 +88,9 @@ SolverSummary RunReducedStepSolver(EquationSolver& solver, StepEquationSystem& s
 // The reduced solve, and where it did not end at a point whose full rows hold (each
 // |F_i| <= max(residual_tol, its rounding floor): a failure, a limit, or the interior's rounding
 // of a badly scaled body), the full route from the same start in the time left, its counts
-// added to the reduced solve's and the reason in its message; details["route"] = "full after
-// reduced" then. An interrupted or timed-out reduced solve is returned as it is.
+// added to the reduced solve's (its history numbered on from them) and the reason in its message;
+// details["route"] = "full after reduced" then. An interrupted or timed-out reduced solve is
+// returned as it is.
 SolverSummary RunReducedOrFullStepSolver(EquationSolver& solver, StepEquationSystem& system, Vec* x,
                                          const SolveControls& controls, double residual_tol,
                                          StepResult* result);
