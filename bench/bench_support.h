@@ -16,6 +16,8 @@
 
 #include "core/blas_info.h"
 #include "formulations/registry.h"
+#include "path/path.h"
+#include "problems/problem.h"
 #include "step/formulation.h"
 #include "verdict/verdict.h"
 
@@ -98,6 +100,17 @@ inline void AddSolveCounters(const StepResult& result, const Verdict& verdict,
   state.counters["linear_solves"] = result.counts.linear_solves;
   state.counters["eq_res"] = verdict.eq_res;
   state.counters["comp_res"] = verdict.comp_res;
+}
+
+// The fixed-load step of `p` to its load from the unloaded state, and the cold start of report
+// 5.1 (each formulation's fixed start; du and r as SolveFixedLoad passes them) in *cold.
+inline StepProblem ColdFixedLoadStep(const Problem& p, StartPoint* cold) {
+  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load), p.scales};
+  cold->kind = StartKind::kCold;
+  cold->du = Vec::Zero(step.num_dofs());
+  cold->dlambda = p.load;
+  cold->r = Vec::Zero(step.num_pairs());
+  return step;
 }
 
 // Why an answer is not accepted, for SkipWithError.

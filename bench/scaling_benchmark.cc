@@ -49,7 +49,6 @@
 #include "bench_support.h"
 #include "core/timer.h"
 #include "formulations/registry.h"
-#include "path/path.h"
 #include "problems/problem.h"
 #include "solvers/cholmod_wrappers.h"
 #include "verdict/verdict.h"
@@ -190,8 +189,8 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
     std::map<std::string, std::string> settings = {{"n", std::to_string(n)}};
     if (hertz) settings["nz"] = std::to_string(n);
     const Problem p = MakeProblem(problem, settings);
-    const StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load),
-                           p.scales};
+    StartPoint cold;
+    const StepProblem step = bench::ColdFixedLoadStep(p, &cold);
     {
       auto probe = MakeFormulation(name, FormulationConfig{});
       if (!probe->Accepts(step, &why)) {
@@ -199,13 +198,6 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const std::s
         return;
       }
     }
-    // The cold start of report 5.1 (each formulation's fixed start; du, r as SolveFixedLoad
-    // passes them).
-    StartPoint cold;
-    cold.kind = StartKind::kCold;
-    cold.du = Vec::Zero(step.num_dofs());
-    cold.dlambda = p.load;
-    cold.r = Vec::Zero(step.num_pairs());
     SolveControls controls;
     controls.time_limit_s = IsNlopt(name) ? kNloptTimeLimitS
                             : hertz       ? kHertzTimeLimitS

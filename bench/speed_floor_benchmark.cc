@@ -28,7 +28,6 @@
 #include "bench_support.h"
 #include "core/timer.h"
 #include "formulations/registry.h"
-#include "path/path.h"
 #include "problems/problem.h"
 #include "verdict/verdict.h"
 
@@ -74,16 +73,6 @@ void AddTimeSplit(const StepResult& result, double solve_s, benchmark::State& st
   state.counters["time_over_floor"] = solve_s / floor;
 }
 
-// The cold fixed-load step of `problem` at mesh size n.
-StepProblem ColdStep(const Problem& p, StartPoint* cold) {
-  StepProblem step{p.model.get(), ZeroState(*p.model), StepConstraint::FixedLoad(p.load), p.scales};
-  cold->kind = StartKind::kCold;
-  cold->du = Vec::Zero(step.num_dofs());
-  cold->dlambda = p.load;
-  cold->r = Vec::Zero(step.num_pairs());
-  return step;
-}
-
 void ColdSolve(benchmark::State& state, const std::string& problem, const Variant& variant) {
   const int n = static_cast<int>(state.range(0));
   std::map<std::string, std::string> settings = {{"n", std::to_string(n)}};
@@ -97,7 +86,7 @@ void ColdSolve(benchmark::State& state, const std::string& problem, const Varian
   try {
     const Problem p = MakeProblem(problem, settings);
     StartPoint cold;
-    const StepProblem step = ColdStep(p, &cold);
+    const StepProblem step = bench::ColdFixedLoadStep(p, &cold);
     FormulationConfig config;
     config.options = variant.options;
     std::string why;
